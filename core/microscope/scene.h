@@ -1,0 +1,81 @@
+#pragma once
+// Everything that defines what the microscope shows: the state a scene file stores, a `--set
+// key=value` changes and a UI control edits. Field names follow the scene keys (dot paths in
+// comments), which are a contract: scripts and saved scenes use them.
+//
+// Lab frame: x to the right of the image (east), y up (north), z along the microscope axis toward
+// the observer; light travels +z; angles counter-clockwise as the observer sees them, from +x.
+#include <array>
+#include <optional>
+#include <string>
+
+namespace pmsim {
+
+enum class ViewMode { Ortho, Cono };                       // mode: ortho|cono
+enum class SampleType { Plate, Wedge, Section };           // sample.type: plate|wedge|section
+enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
+enum class IlluminantName { D65, A };                      // illuminant: D65|A
+enum class LensModel { Auto, Ideal, Physical };            // optics.lens_model: auto|ideal|physical
+
+struct CrystalIndices {          // sample.crystal: {"no":..,"ne":..} or {"nalpha":..,"nbeta":..,"ngamma":..}
+  bool uniaxial = true;
+  double no = 1.544, ne = 1.553;                     // uniaxial
+  double nalpha = 1.5, nbeta = 1.5, ngamma = 1.5;    // biaxial
+};
+
+struct ObjectiveSettings {
+  double magnification = 10.0;   // objective.magnification
+  double na = 0.25;              // objective.na
+};
+
+struct CondenserSettings {
+  double na = 0.9;               // condenser.na (the cone that lights the conoscopic figure)
+};
+
+struct SampleSettings {
+  SampleType type = SampleType::Plate;         // sample.type
+  std::string mineral = "quartz";              // sample.mineral (a name in assets/minerals)
+  std::optional<CrystalIndices> crystal;       // sample.crystal (replaces mineral when set)
+  double thickness_um = 30.0;                  // sample.thickness_um (wedge: at the right edge)
+  std::array<double, 3> optic_axis{1, 0, 0};   // sample.optic_axis (uniaxial), lab frame at stage 0°
+  std::array<double, 3> x_axis{1, 0, 0};       // sample.x_axis (biaxial nα direction)
+  std::array<double, 3> z_axis{0, 0, 1};       // sample.z_axis (biaxial nγ direction)
+  std::string section;                         // sample.section (thin-section file in assets/sections)
+  std::string medium = "mounting";             // sample.medium (mounting medium name)
+};
+
+struct RenderSettings {
+  int width = 512;                             // render.width
+  int height = 512;                            // render.height
+  int spp = 0;                                 // render.spp (0: until converged)
+  int wavelengths = 0;                         // render.wavelengths (0: until converged)
+  double single_wavelength_nm = 0.0;           // render.single_wavelength_nm (0: white light)
+  double tolerance_de2000 = 0.5;               // render.tolerance (stop when the estimate is below)
+  std::string strategy = "auto";               // render.strategy (see core/render)
+};
+
+struct OpticsSettings {
+  LensModel lens_model = LensModel::Auto;      // optics.lens_model
+  int lens_depth = 1;                          // optics.lens_depth (dT for physical lenses)
+  bool schlick = false;                        // optics.schlick (approximate Fresnel)
+};
+
+struct Scene {
+  ViewMode mode = ViewMode::Ortho;             // mode
+  double polarizer_deg = 0.0;                  // polarizer_deg (0 = E–W)
+  double analyzer_deg = 90.0;                  // analyzer_deg (90 = N–S)
+  bool analyzer_in = true;                     // analyzer: in|out
+  double stage_deg = 0.0;                      // stage_deg
+  bool bertrand_in = false;                    // bertrand: in|out
+  IlluminantName illuminant = IlluminantName::D65;  // illuminant
+  ObjectiveSettings objective;
+  CondenserSettings condenser;
+  SampleSettings sample;
+  bool sample_in = true;                       // sample.present: false = empty stage
+  Compensator compensator = Compensator::None; // compensator
+  double compensator_position = 0.0;           // compensator_position 0…1 (quartz wedge)
+  RenderSettings render;
+  OpticsSettings optics;
+};
+
+}  // namespace pmsim

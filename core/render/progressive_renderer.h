@@ -1,0 +1,57 @@
+#pragma once
+// The progressive renderer: accumulates spectral samples per pixel across passes in double,
+// develops them to colour only when asked, and can be restarted the moment a setting changes.
+// Work runs on TBB worker threads; restart() and snapshot() never block for a whole pass, so a UI
+// thread can call them every frame.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/microscope/scene.h"
+
+namespace pmsim {
+
+struct RenderImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;            // linear sRGB, row-major, top row first, 3 floats a pixel
+  std::vector<float> xyz;            // CIE XYZ (Y = 1: the exposure reference), same layout
+  double samples_per_pixel = 0.0;    // spatial × spectral samples done per pixel
+  int wavelengths = 0;               // spectral samples per pixel so far
+  int passes = 0;
+  double error_estimate = 0.0;       // estimated mean CIEDE2000 against the converged image
+  bool converged = false;            // estimate below the scene's tolerance, or spp/wavelengths reached
+  double time_ms = 0.0;              // wall time since the last restart
+  std::uint64_t generation = 0;      // increments with every restart()
+  std::string model_report;          // which model each element uses, e.g. "objective: ideal (err 0.02)"
+};
+
+class ProgressiveRenderer {
+ public:
+  explicit ProgressiveRenderer(int threads = 0);  // 0: all cores
+  ~ProgressiveRenderer();
+  ProgressiveRenderer(const ProgressiveRenderer&) = delete;
+  ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
+
+  // Cancels the work in flight and starts accumulating the new scene. Throws InputError if the
+  // scene is invalid (and then keeps rendering the previous one).
+  void restart(const Scene& scene);
+  void cancel();                          // stops work; snapshot() keeps the last image
+
+  // Copies the latest developed image into `out`; returns false if nothing new since `generation`
+  // and `passes` of `out` (so a UI uploads a texture only when something changed).
+  bool snapshot(RenderImage& out) const;
+
+  // Blocks until converged (or spp/wavelengths reached), cancelled, or timeout; returns converged.
+  bool wait(double timeout_s = 1e30) const;
+
+  // Renders a scene to convergence on the calling thread's TBB arena; what pmsim-render uses.
+  static RenderImage render(const Scene& scene, int threads = 0);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pmsim
