@@ -1,0 +1,50 @@
+#pragma once
+// The polarization frame at a hit (fixed once for the whole project):
+//   s   = unit(d × N)      perpendicular to the plane of incidence (E⊥)
+//   p_i = d × s            in the plane of incidence, incident ray   (s × p_i =  d)
+//   p_t = t × s            refracted ray                             (s × p_t =  t)
+//   p_r = s × r            reflected ray                             (p_r × s =  r)
+// N is the surface normal, either orientation: flipping N flips s and every p together, which
+// leaves each field component s·(E·s) unchanged. In this frame fresnel.h's amplitudes (and the
+// paper's flip rules, normal-incidence ratio and TIR phases) give the physical field.
+// At normal incidence d × N vanishes and every s ⟂ d gives the same physical result (r_s = r_p,
+// t_s = t_p); we then pick s from the coordinate axis least aligned with d, which never fails.
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace pmsim {
+
+// A unit vector perpendicular to unit vector d, continuous over large regions of directions
+// (Frisvad-style choice of the helper axis by the smallest component).
+inline glm::dvec3 any_perpendicular(const glm::dvec3& d) {
+  const glm::dvec3 a = glm::abs(d);
+  const glm::dvec3 helper = (a.x <= a.y && a.x <= a.z) ? glm::dvec3(1, 0, 0)
+                            : (a.y <= a.z)             ? glm::dvec3(0, 1, 0)
+                                                       : glm::dvec3(0, 0, 1);
+  return glm::normalize(glm::cross(d, helper));
+}
+
+// s = unit(d × N); below this |d × N| the incidence is treated as normal (the relative error of
+// the normalized cross product is ~1e-16/|d × N|, still tiny at 1e-12, and there r_s − r_p is
+// O(sin²θ) ≈ 1e-24, so the switch is invisible).
+inline glm::dvec3 perpendicular_axis(const glm::dvec3& d, const glm::dvec3& N) {
+  const glm::dvec3 c = glm::cross(d, N);
+  const double len2 = glm::dot(c, c);
+  if (len2 > 1e-24) return c / std::sqrt(len2);
+  return any_perpendicular(d);
+}
+
+struct PolarizationFrame {
+  glm::dvec3 s;    // ⟂ plane of incidence
+  glm::dvec3 p_i;  // d × s
+};
+
+inline PolarizationFrame polarization_frame(const glm::dvec3& d, const glm::dvec3& N) {
+  const glm::dvec3 s = perpendicular_axis(d, N);
+  return {s, glm::cross(d, s)};
+}
+inline glm::dvec3 p_refracted(const glm::dvec3& s, const glm::dvec3& t) { return glm::cross(t, s); }
+inline glm::dvec3 p_reflected(const glm::dvec3& s, const glm::dvec3& r) { return glm::cross(s, r); }
+
+}  // namespace pmsim
