@@ -1,5 +1,6 @@
 #include "core/spectrum/wavelength_sampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -69,7 +70,8 @@ SampledWavelengths hero_wavelengths(int n, double u) {
   for (int j = 0; j < n; ++j) {
     double offset = std::fmod(u + static_cast<double>(j) / n, 1.0);
     if (offset >= 1.0) offset = 0.0;
-    s.nm.push_back(kVisibleMinNm + kRangeNm * offset);
+    // 380 + 400·offset can round up to 780 for offset just below 1; keep the range half-open.
+    s.nm.push_back(std::min(kVisibleMinNm + kRangeNm * offset, std::nextafter(kVisibleMaxNm, 0.0)));
     s.pdf.push_back(1.0 / kRangeNm);
     s.weight_nm.push_back(kRangeNm / n);
   }
