@@ -41,7 +41,8 @@ struct AbsorptionTable {
   bool empty() const { return wavelength_nm.empty(); }
 };
 
-// Rotatory power ρ(λ) = A/(λ² − λ0²) (Drude's one-term formula, Born & Wolf §15.? / Lowry 1935),
+// Rotatory power ρ(λ) = A/(λ² − λ0²) (Drude's one-term law of rotatory dispersion; Lowry,
+// "Optical Rotatory Power", 1935),
 // in rad per µm, λ in µm. Positive = dextrorotatory (clockwise as seen by the observer looking
 // toward the source), the convention of chemistry and of "right-handed quartz".
 struct RotatoryDispersion {
@@ -117,7 +118,7 @@ glm::dmat3 biaxial_orientation(glm::dvec3 x_axis, glm::dvec3 z_axis);  // Gram�
 glm::dmat3 rotate_stage(const glm::dmat3& crystal_to_lab, double stage_rad);
 
 // The optic angle 2V measured about Z (the nγ axis), i.e. 2Vz in [0, π]:
-// cos²Vz = nα²(nγ² − nβ²) / (nβ²(nγ² − nα²))   (Born & Wolf §15.3.3; Nesse 2012 eq. 7.?).
+// cos²Vz = nα²(nγ² − nβ²) / (nβ²(nγ² − nα²))   (Born & Wolf §15.3; Nesse 2012 ch. 7).
 // 2Vz < π/2: Z is the acute bisectrix (optically positive); 2Vz > π/2: X is (negative),
 // 2Vx = π − 2Vz. The optic axes lie in the XZ plane at ±Vz from Z. Uniaxial limits: nβ = nα → 0,
 // nβ = nγ → π; isotropic (nα = nγ) → 0.

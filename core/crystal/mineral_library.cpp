@@ -1,0 +1,246 @@
+// The mineral library: assets/minerals/*.json parsed into Crystals, loaded once, looked up by
+// case-insensitive name.
+//
+// File format (every number's origin is named by the "source" keys):
+//   {"name": "quartz", "symmetry": "uniaxial" | "biaxial" | "isotropic", "source": "...",
+//    "indices": {"no": N, "ne": N} | {"nalpha": N, "nbeta": N, "ngamma": N} | {"n": N},
+//        where N is a number (constant) or {"model": "ghosh1999", "A","B","C","D","E"}
+//        or {"model": "cauchy", "A","B","C"} (λ in µm),
+//    "absorption": {"source": "...", "reference_thickness_um": 30, "wavelength_nm": [...],
+//        "transmittance": {"o": [...], "e": [...]} or {"alpha": [...], "beta": [...], "gamma": [...]}},
+//    "rotatory_power": {"source": "...", "A_deg_um2_per_mm": A, "lambda0_um": l0,
+//        "handedness": "right" | "left"},
+//    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used)}
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "core/crystal/crystal.h"
+#include "core/io/input_error.h"
+
+namespace pmsim {
+namespace {
+
+using nlohmann::json;
+
+std::string lower(std::string_view s) {
+  std::string r(s);
+  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return std::tolower(c); });
+  return r;
+}
+
+struct Reader {
+  const std::string& file;
+  [[noreturn]] void fail(const std::string& key, const json& v, const std::string& why) const {
+    throw InputError(file, key, v.is_null() ? std::string() : v.dump(), why);
+  }
+  const json& need(const json& obj, const std::string& key, const std::string& path) const {
+    if (!obj.is_object() || !obj.contains(key)) fail(path, json(), "missing key");
+    return obj.at(key);
+  }
+  double number(const json& v, const std::string& path) const {
+    if (!v.is_number()) fail(path, v, "expected a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(path, v, "expected a finite number");
+    return d;
+  }
+  double index_at(const IndexDispersion& d, const std::string& path, const json& v) const {
+    for (double wl : {400.0, 589.3, 700.0}) {
+      const double n = d.n(wl);
+      if (!std::isfinite(n) || !(n > 1.0) || n > 5.0)
+        fail(path, v, "refractive index outside (1, 5] at " + std::to_string(wl) + " nm");
+    }
+    return d.n(589.3);
+  }
+  IndexDispersion dispersion(const json& v, const std::string& path) const {
+    IndexDispersion d;
+    if (v.is_number()) {
+      d.A = number(v, path);
+    } else if (v.is_object()) {
+      const json& m = need(v, "model", path + ".model");
+      if (!m.is_string()) fail(path + ".model", m, "expected a string");
+      const std::string model = m.get<std::string>();
+      if (model == "ghosh1999") {
+        d.model = IndexDispersion::Model::Ghosh1999;
+        d.A = number(need(v, "A", path + ".A"), path + ".A");
+        d.B = number(need(v, "B", path + ".B"), path + ".B");
+        d.C = number(need(v, "C", path + ".C"), path + ".C");
+        d.D = number(need(v, "D", path + ".D"), path + ".D");
+        d.E = number(need(v, "E", path + ".E"), path + ".E");
+      } else if (model == "cauchy") {
+        d.model = IndexDispersion::Model::Cauchy;
+        d.A = number(need(v, "A", path + ".A"), path + ".A");
+        d.B = v.contains("B") ? number(v["B"], path + ".B") : 0.0;
+        d.C = v.contains("C") ? number(v["C"], path + ".C") : 0.0;
+      } else if (model == "constant") {
+        d.A = number(need(v, "n", path + ".n"), path + ".n");
+      } else {
+        fail(path + ".model", m, "unknown dispersion model (constant, ghosh1999, cauchy)");
+      }
+    } else {
+      fail(path, v, "expected a number or a dispersion object");
+    }
+    index_at(d, path, v);
+    return d;
+  }
+  std::vector<double> numbers(const json& v, const std::string& path) const {
+    if (!v.is_array() || v.empty()) fail(path, v, "expected a non-empty array of numbers");
+    std::vector<double> r;
+    for (size_t i = 0; i < v.size(); ++i) r.push_back(number(v[i], path + "[" + std::to_string(i) + "]"));
+    return r;
+  }
+};
+
+}  // namespace
+
+Crystal load_mineral_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "", "cannot open mineral file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", "", std::string("invalid JSON: ") + e.what());
+  }
+  const Reader r{path};
+  if (!j.is_object()) r.fail("", j, "expected a JSON object");
+  const json& name_v = r.need(j, "name", "name");
+  if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
+  const json& src_v = r.need(j, "source", "source");
+  if (!src_v.is_string() || src_v.get<std::string>().empty())
+    r.fail("source", src_v, "every mineral file must cite the source of its numbers");
+  const json& sym_v = r.need(j, "symmetry", "symmetry");
+  const std::string sym = sym_v.is_string() ? sym_v.get<std::string>() : std::string();
+  const json& idx = r.need(j, "indices", "indices");
+
+  Crystal c;
+  std::vector<std::string> axis_keys;
+  if (sym == "uniaxial") {
+    const auto no = r.dispersion(r.need(idx, "no", "indices.no"), "indices.no");
+    const auto ne = r.dispersion(r.need(idx, "ne", "indices.ne"), "indices.ne");
+    c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Uniaxial, no, no, ne,
+                      src_v.get<std::string>());
+    axis_keys = {"o", "o", "e"};
+  } else if (sym == "biaxial") {
+    const auto a = r.dispersion(r.need(idx, "nalpha", "indices.nalpha"), "indices.nalpha");
+    const auto b = r.dispersion(r.need(idx, "nbeta", "indices.nbeta"), "indices.nbeta");
+    const auto g = r.dispersion(r.need(idx, "ngamma", "indices.ngamma"), "indices.ngamma");
+    for (double wl : {400.0, 589.3, 700.0}) {
+      if (!(a.n(wl) <= b.n(wl) && b.n(wl) <= g.n(wl)))
+        r.fail("indices", idx, "biaxial indices must satisfy nalpha <= nbeta <= ngamma");
+    }
+    c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Biaxial, a, b, g,
+                      src_v.get<std::string>());
+    axis_keys = {"alpha", "beta", "gamma"};
+  } else if (sym == "isotropic") {
+    const auto n = r.dispersion(r.need(idx, "n", "indices.n"), "indices.n");
+    c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Isotropic, n, n, n,
+                      src_v.get<std::string>());
+    axis_keys = {"n", "n", "n"};
+  } else {
+    r.fail("symmetry", sym_v, "expected uniaxial, biaxial or isotropic");
+  }
+
+  if (j.contains("absorption")) {
+    const json& ab = j["absorption"];
+    if (!ab.is_object()) r.fail("absorption", ab, "expected an object");
+    const double d_um = r.number(r.need(ab, "reference_thickness_um", "absorption.reference_thickness_um"),
+                                 "absorption.reference_thickness_um");
+    if (!(d_um > 0.0)) r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
+    const auto wl = r.numbers(r.need(ab, "wavelength_nm", "absorption.wavelength_nm"), "absorption.wavelength_nm");
+    for (size_t i = 1; i < wl.size(); ++i)
+      if (!(wl[i] > wl[i - 1])) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "must increase");
+    const json& tr = r.need(ab, "transmittance", "absorption.transmittance");
+    AbsorptionTable t[3];
+    for (int k = 0; k < 3; ++k) {
+      const std::string key = "absorption.transmittance." + axis_keys[k];
+      const auto T = r.numbers(r.need(tr, axis_keys[k], key), key);
+      if (T.size() != wl.size()) r.fail(key, tr[axis_keys[k]], "needs one value per wavelength");
+      t[k].wavelength_nm = wl;
+      for (double v : T) {
+        if (!(v > 0.0 && v <= 1.0)) r.fail(key, tr[axis_keys[k]], "transmittance must be in (0, 1]");
+        t[k].mu_per_um.push_back(-std::log(v) / d_um);  // Beer–Lambert: T = e^(−μd)
+      }
+    }
+    c.set_absorption(t[0], t[1], t[2]);
+  }
+
+  if (j.contains("rotatory_power")) {
+    const json& rp = j["rotatory_power"];
+    const double a_deg = r.number(r.need(rp, "A_deg_um2_per_mm", "rotatory_power.A_deg_um2_per_mm"),
+                                  "rotatory_power.A_deg_um2_per_mm");
+    const double l0 = r.number(r.need(rp, "lambda0_um", "rotatory_power.lambda0_um"), "rotatory_power.lambda0_um");
+    if (!(l0 >= 0.0 && l0 < 0.35)) r.fail("rotatory_power.lambda0_um", rp["lambda0_um"], "must be in [0, 0.35)");
+    const json& hand = r.need(rp, "handedness", "rotatory_power.handedness");
+    double sign = 0.0;
+    if (hand == "right") sign = 1.0;
+    else if (hand == "left") sign = -1.0;
+    else r.fail("rotatory_power.handedness", hand, "expected right or left");
+    RotatoryDispersion rd;
+    rd.A_rad_um = sign * a_deg * (std::numbers::pi / 180.0) * 1e-3;  // °·µm²/mm → rad·µm²/µm
+    rd.lambda0_um = l0;
+    c.set_rotatory_power(rd);
+  }
+  return c;
+}
+
+namespace {
+
+std::filesystem::path mineral_dir() {
+  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env)
+    return std::filesystem::path(env) / "minerals";
+  return std::filesystem::path(PMSIM_ASSET_DIR) / "minerals";
+}
+
+struct Library {
+  std::map<std::string, Crystal> by_name;  // lower-case name → crystal (node-stable references)
+};
+
+const Library& library() {
+  static const Library lib = [] {
+    Library l;
+    const auto dir = mineral_dir();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+      throw InputError(dir.string(), "", "", "mineral directory not found (set PMSIM_ASSETS)");
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+      if (e.path().extension() == ".json") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      Crystal c = load_mineral_file(f.string());
+      const std::string key = lower(c.name());
+      l.by_name.emplace(key, std::move(c));
+    }
+    return l;
+  }();
+  return lib;
+}
+
+}  // namespace
+
+const Crystal& find_mineral(std::string_view name) {
+  const Library& lib = library();
+  const auto it = lib.by_name.find(lower(name));
+  if (it == lib.by_name.end()) {
+    std::string known;
+    for (const auto& [k, v] : lib.by_name) known += (known.empty() ? "" : ", ") + k;
+    throw InputError("", "sample.mineral", std::string(name), "unknown mineral (known: " + known + ")");
+  }
+  return it->second;
+}
+
+std::vector<std::string> mineral_names() {
+  std::vector<std::string> names;
+  for (const auto& [k, v] : library().by_name) names.push_back(k);
+  return names;
+}
+
+}  // namespace pmsim
