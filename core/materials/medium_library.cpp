@@ -31,7 +31,10 @@ class Reader {
   Reader(const std::string& file, const json& root) : file_(file), root_(root) {}
 
   [[noreturn]] void fail(const std::string& key, const json& value, const std::string& why) const {
-    throw InputError(file_, key, value.is_null() ? std::string() : value.dump(), why);
+    const std::string text = value.is_null()     ? std::string()
+                             : value.is_string() ? value.get<std::string>()
+                                                 : value.dump();
+    throw InputError(file_, key, text, why);
   }
 
   const json& require(const std::string& key) const {
@@ -89,7 +92,7 @@ Medium load_medium_file(const std::string& path) {
   json root;
   try {
     root = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) throw InputError(path, "", "", "expected a JSON object");
