@@ -1,23 +1,25 @@
 // Plane-wave eigenmodes of an anisotropic plate and its Jones matrix.
 //
-// Model and approximations (after Debelov & Kozlov 2013, Born & Wolf §15.2–15.3, Yariv & Yeh ch. 4):
-// * The incident wave has tangential wave vector q = k0·(k_air.x, k_air.y) (conserved through the
-//   mounting medium, the plate and back). Inside the crystal each eigenmode has wave normal
+// Model and approximations (after Debelov & Kozlov 2013, Born & Wolf §15.2–15.3, Yariv & Yeh
+// "Optical Waves in Crystals" ch. 4–5):
+// * The incident wave has tangential wave vector q = k0·(k_air.x, k_air.y), conserved through the
+//   mounting medium, the plate and back. Inside the crystal each eigenmode has wave normal
 //   s_i = (q, k_zi)/n_i with n_i its index for that normal: the Fresnel equation of wave normals
 //   is solved as the 2×2 eigenproblem of the impermeability tensor η = ε⁻¹ projected on the
 //   plane ⟂ s (eigenvalues 1/n², eigenvectors the D directions). Uniaxial: k_z in closed form
-//   (ordinary k_z = √(no² − q²); extraordinary from the quadratic kᵀAk = 1 with
+//   (ordinary k_z = ±√(no² − q²); extraordinary from the quadratic kᵀAk = 1 with
 //   A = I/ne² + (1/no² − 1/ne²)ccᵀ). Biaxial: the fixed point n ← n(s(n)) for each mode, which
 //   contracts by about (nγ − nα)·tanθ/n per step and is iterated to 1e-15.
-// * The interfaces use, for each mode, the isotropic Fresnel amplitudes (Born & Wolf 1.5 (20))
-//   for the mode's own index and angle, weighted by its TE/TM content d_p², d_s². This is exact
-//   for modes that are pure TE or TM and first-order in the birefringence otherwise; it ignores
-//   the coupling of the two modes at the faces and multiple reflections inside the plate.
-//   At normal incidence t_in·t_out = 4n n'/(n + n')² = 1 − R.
-// * Mode fields are carried in TE/TM coordinates: the same (p, s) components map a field in the
-//   crystal (relative to s_i) to one outside (relative to k_air), with s = unit(ẑ × k) and
-//   p = s × k. The two mode columns may be non-orthogonal; the incident field is decomposed with
-//   the inverse of that basis.
+// * Faces: exact single-interface amplitudes from continuity of tangential E and H (the
+//   boundary-value problem of Yariv & Yeh ch. 4; Born & Wolf §1.5 for the isotropic case): at entry the unknowns are the two forward modes and the
+//   reflected s and p waves; at exit the transmitted s and p waves and the two backward modes.
+//   Each is a 4×4 real linear system. Multiple reflections inside the plate are neglected (their
+//   power is ~R² ≈ 1e-6 of the direct wave); so |J|² ≤ 1 without absorption.
+//   With fresnel = false the incident field is decomposed on the mode D directions (TE/TM
+//   coordinates) and recomposed from them, lossless.
+// * TE/TM coordinates: s = unit(ẑ × k), p = s × k; the same (p, s) components describe the field
+//   outside relative to k_air, so the Jones matrix is returned in transverse_basis(k_air) after a
+//   rotation from (p, s).
 // * Absorption (pleochroism): a mode vibrating along D loses intensity at μ = Dᵀ·M·D with
 //   M = Σ μ_k·axis_k·axis_kᵀ (the principal absorptions weighted by (D·axis_k)²), over the path
 //   d/cos θ_i; the lossless mode shapes are kept (weak absorption).
@@ -25,9 +27,9 @@
 //   Jones' N-matrix combination of linear retardance δ = k0·d·(k_z2 − k_z1) and a rotation
 //   α = −ρ·(s·c)²·d/cos θ (gyration along the wave normal ∝ cos² of its angle to the optic axis;
 //   the transverse gyration component g11 is neglected). Along the axis this is a pure rotation
-//   by ρd; far from it the linear birefringence dominates and the modes become linear again.
+//   by ρd; far from it the linear birefringence dominates and the modes are linear again.
 // * Walk-off: the lateral ray displacement is reported in PlateModes but not applied: across a
-//   30 µm section it is below 2 µm, much less than a pixel of a thin-section image.
+//   30 µm section it is at most a few µm, below a pixel of a thin-section image.
 #include "core/crystal/plate.h"
 
 #include <algorithm>
@@ -84,7 +86,7 @@ struct Eigen2 {
   double fx, fy;              // fast D direction in (p, s) of the wave normal; slow is (−fy, fx)
 };
 
-// Symmetric 2×2 [[a, b], [b, c]] — closed form; at degeneracy any orthogonal pair (here p, s).
+// Symmetric 2×2 [[a, b], [b, c]] in closed form; at degeneracy any orthogonal pair (here p, s).
 inline Eigen2 eigen_sym2(double a, double b, double c) {
   const double m = 0.5 * (a + c), h = 0.5 * (a - c);
   const double r = std::hypot(h, b);
@@ -99,10 +101,6 @@ inline Eigen2 eigen_sym2(double a, double b, double c) {
   return e;
 }
 
-inline double quad(const glm::dmat3& M, const glm::dvec3& u, const glm::dvec3& v) {
-  return glm::dot(u, M * v);
-}
-
 // η projected on the plane ⟂ s, in the basis (p = s_hat × s, s_hat).
 inline Eigen2 wave_normal_modes(const glm::dmat3& eta, const glm::dvec3& s, const glm::dvec3& s_hat) {
   const glm::dvec3 p = glm::cross(s_hat, s);
@@ -110,23 +108,112 @@ inline Eigen2 wave_normal_modes(const glm::dmat3& eta, const glm::dvec3& s, cons
   return eigen_sym2(glm::dot(p, eta_p), glm::dot(p, eta_s), glm::dot(s_hat, eta_s));
 }
 
-inline glm::dvec3 normal_from(double qx, double qy, double kz) {
-  return glm::dvec3(qx, qy, kz) / std::sqrt(qx * qx + qy * qy + kz * kz);
-}
-
+inline glm::dvec3 unit(const glm::dvec3& v) { return v / std::sqrt(glm::dot(v, v)); }
 inline double kz_for(double n, double q2) { return std::sqrt(std::max(n * n - q2, 0.0)); }
 
-// Isotropic Fresnel amplitude transmissions (Born & Wolf 1.5 (20)):
-// t_s = 2n1c1/(n1c1 + n2c2), t_p = 2n1c1/(n2c1 + n1c2).
-inline double t_s(double n1, double c1, double n2, double c2) { return 2 * n1 * c1 / (n1 * c1 + n2 * c2); }
-inline double t_p(double n1, double c1, double n2, double c2) { return 2 * n1 * c1 / (n2 * c1 + n1 * c2); }
+// The two eigenmodes travelling forward (dir = +1) or backward (dir = −1) for tangential q.
+struct ModePair {
+  double kz[2];        // units of k0; [0] fast, [1] slow
+  double n[2];
+  glm::dvec3 s[2];     // wave normals
+  double dp[2], ds[2]; // D in TE/TM coordinates of its own wave normal (unit)
+  glm::dvec3 D[2];     // unit D vectors
+};
+
+ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, const glm::dvec3& s_hat,
+                    double dir) {
+  ModePair mp;
+  if (P.symmetry == CrystalSymmetry::Uniaxial) {
+    const double no = P.n_principal.x, ne = P.n_principal.z;
+    const glm::dvec3& c = P.optic_axis;
+    const double kzo = dir * kz_for(no, q2);
+    // kᵀAk = 1, A = I/ne² + (1/no² − 1/ne²)ccᵀ (extraordinary wave normals, Born & Wolf §15.3.3):
+    // a·k_z² + b·k_z + c0 = 0 with c0 < 0, so one root of each sign; written without cancellation.
+    const double g = 1.0 / (no * no) - 1.0 / (ne * ne), ie2 = 1.0 / (ne * ne);
+    const double cq = c.x * qx + c.y * qy;
+    const double a = ie2 + g * c.z * c.z, b = 2.0 * g * c.z * cq;
+    const double c0 = ie2 * q2 + g * cq * cq - 1.0;
+    const double disc = std::sqrt(std::max(b * b - 4.0 * a * c0, 0.0));
+    const double big = b >= 0.0 ? (-b - disc) / (2.0 * a) : (-b + disc) / (2.0 * a);
+    const double other = c0 / (a * big);
+    const double kze = (dir > 0) == (big > 0) ? big : other;
+    const double n_e = std::sqrt(q2 + kze * kze);
+    const bool o_fast = no <= n_e;
+    mp.kz[0] = o_fast ? kzo : kze;
+    mp.kz[1] = o_fast ? kze : kzo;
+  } else {
+    for (int i = 0; i < 2; ++i) {
+      double n = P.mean_n;
+      for (int it = 0; it < 60; ++it) {
+        const glm::dvec3 sv = unit(glm::dvec3(qx, qy, dir * kz_for(n, q2)));
+        const Eigen2 e = wave_normal_modes(P.eta, sv, s_hat);
+        const double n_new = 1.0 / std::sqrt(i == 0 ? e.lam_fast : e.lam_slow);
+        const double diff = std::abs(n_new - n);
+        n = n_new;
+        if (diff <= 1e-15) break;
+      }
+      mp.kz[i] = dir * kz_for(n, q2);
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    mp.n[i] = std::sqrt(q2 + mp.kz[i] * mp.kz[i]);
+    mp.s[i] = glm::dvec3(qx, qy, mp.kz[i]) / mp.n[i];
+    const Eigen2 e = wave_normal_modes(P.eta, mp.s[i], s_hat);
+    mp.dp[i] = i == 0 ? e.fx : -e.fy;
+    mp.ds[i] = i == 0 ? e.fy : e.fx;
+  }
+  // Right-handed pair (det > 0) so that σ2 in the mode basis is a counter-clockwise rotation.
+  if (mp.dp[0] * mp.ds[1] - mp.ds[0] * mp.dp[1] < 0.0) {
+    mp.dp[1] = -mp.dp[1];
+    mp.ds[1] = -mp.ds[1];
+  }
+  for (int i = 0; i < 2; ++i) mp.D[i] = mp.dp[i] * glm::cross(s_hat, mp.s[i]) + mp.ds[i] * s_hat;
+  return mp;
+}
+
+// Tangential field (E_x, E_y, H_x, H_y) of a plane wave with wave vector k (units of k0) and
+// field E; H = k × E in units of E/Z0 (Maxwell: k0·H·Z0 = k × E).
+struct Tangential { double v[4]; };
+inline Tangential tangential(const glm::dvec3& k, const glm::dvec3& E) {
+  const glm::dvec3 H = glm::cross(k, E);
+  return {{E.x, E.y, H.x, H.y}};
+}
+
+// Solves A·x = b for a 4×4 system given by columns, two right-hand sides; Gauss with pivoting.
+void solve4(const Tangential cols[4], const Tangential rhs[2], double x[2][4]) {
+  double m[4][6];
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) m[r][c] = cols[c].v[r];
+    m[r][4] = rhs[0].v[r];
+    m[r][5] = rhs[1].v[r];
+  }
+  for (int c = 0; c < 4; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::abs(m[r][c]) > std::abs(m[piv][c])) piv = r;
+    if (piv != c)
+      for (int k = 0; k < 6; ++k) std::swap(m[c][k], m[piv][k]);
+    const double inv = 1.0 / m[c][c];
+    for (int r = c + 1; r < 4; ++r) {
+      const double f = m[r][c] * inv;
+      for (int k = c; k < 6; ++k) m[r][k] -= f * m[c][k];
+    }
+  }
+  for (int j = 0; j < 2; ++j) {
+    for (int r = 3; r >= 0; --r) {
+      double acc = m[r][4 + j];
+      for (int k = r + 1; k < 4; ++k) acc -= m[r][k] * x[j][k];
+      x[j][r] = acc / m[r][r];
+    }
+  }
+}
 
 struct Solved {
   PlateModes m;
-  double dp[2], ds[2];  // mode D directions in TE/TM coordinates (columns of P)
-  double kappa[2];      // amplitude attenuation exponents
-  double alpha;         // optical rotation angle (rad, counter-clockwise positive)
-  double fresnel_t[2];  // t_in·t_out of each mode (1 without Fresnel)
+  double tin[2][2];    // mode amplitudes from (p, s) incident amplitudes: tin[mode][p|s]
+  double tout[2][2];   // outgoing (p, s) amplitudes per unit mode amplitude: tout[p|s][mode]
+  double kappa[2];     // amplitude attenuation exponents
+  double alpha;        // optical rotation angle (rad, counter-clockwise positive)
   glm::dvec3 s_hat, p_air;
 };
 
@@ -141,93 +228,83 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
   out.s_hat = q > 0.0 ? glm::dvec3(-qy / q, qx / q, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
   const glm::dvec3& s_hat = out.s_hat;
   out.p_air = glm::cross(s_hat, k_air);
-
-  // Normal components k_z (units of k0) of the fast (index 0) and slow (1) modes.
-  double kz[2];
-  if (P.symmetry == CrystalSymmetry::Uniaxial) {
-    const double no = P.n_principal.x, ne = P.n_principal.z;
-    const glm::dvec3& c = P.optic_axis;
-    const double kzo = kz_for(no, q2);
-    // kᵀAk = 1, A = I/ne² + (1/no² − 1/ne²)ccᵀ (extraordinary wave normals, Born & Wolf §15.3.3).
-    const double g = 1.0 / (no * no) - 1.0 / (ne * ne), ie2 = 1.0 / (ne * ne);
-    const double a = ie2 + g * c.z * c.z;
-    const double b = 2.0 * g * c.z * (c.x * qx + c.y * qy);
-    const double cq = c.x * qx + c.y * qy;
-    const double c0 = ie2 * q2 + g * cq * cq - 1.0;
-    const double disc = std::sqrt(std::max(b * b - 4.0 * a * c0, 0.0));
-    // Forward root, written without cancellation (c0 < 0 ⇒ one positive root).
-    const double kze = b >= 0.0 ? (2.0 * c0) / (-b - disc) : (-b + disc) / (2.0 * a);
-    const double n_e_eff = std::sqrt(q2 + kze * kze);
-    if (no <= n_e_eff) { kz[0] = kzo; kz[1] = kze; } else { kz[0] = kze; kz[1] = kzo; }
-  } else {
-    for (int i = 0; i < 2; ++i) {
-      double n = P.mean_n;
-      for (int it = 0; it < 60; ++it) {
-        const Eigen2 e = wave_normal_modes(P.eta, normal_from(qx, qy, kz_for(n, q2)), s_hat);
-        const double n_new = 1.0 / std::sqrt(i == 0 ? e.lam_fast : e.lam_slow);
-        const double diff = std::abs(n_new - n);
-        n = n_new;
-        if (diff <= 1e-15) break;
-      }
-      kz[i] = kz_for(n, q2);
-    }
-  }
-
-  // Mode fields at each mode's own wave normal; the fast one is the larger-η eigenvector.
-  const double kzm = kz_for(P.n_outside, q2);
-  const double cm = kzm / P.n_outside;
   const double d = P.thickness_um;
-  double t_total[2];
-  glm::dvec3 s_i[2];
-  for (int i = 0; i < 2; ++i) {
-    s_i[i] = normal_from(qx, qy, kz[i]);
-    const Eigen2 e = wave_normal_modes(P.eta, s_i[i], s_hat);
-    out.dp[i] = i == 0 ? e.fx : -e.fy;
-    out.ds[i] = i == 0 ? e.fy : e.fx;
-    const double n = std::sqrt(q2 + kz[i] * kz[i]);
-    const double ci = kz[i] / n;
-    const double dp2 = out.dp[i] * out.dp[i], ds2 = out.ds[i] * out.ds[i];
-    double t = 1.0;
-    if (P.fresnel) {
-      const double tin = dp2 * t_p(P.n_outside, cm, n, ci) + ds2 * t_s(P.n_outside, cm, n, ci);
-      const double tout = dp2 * t_p(n, ci, P.n_outside, cm) + ds2 * t_s(n, ci, P.n_outside, cm);
-      t = tin * tout;
+
+  const ModePair f = find_modes(P, qx, qy, q2, s_hat, +1.0);
+  if (!P.fresnel) {
+    // Lossless decomposition on the mode D directions: tin = P⁻¹, tout = P, P = [[dp0, dp1], [ds0, ds1]].
+    const double det = f.dp[0] * f.ds[1] - f.dp[1] * f.ds[0];
+    out.tin[0][0] = f.ds[1] / det;
+    out.tin[0][1] = -f.dp[1] / det;
+    out.tin[1][0] = -f.ds[0] / det;
+    out.tin[1][1] = f.dp[0] / det;
+    out.tout[0][0] = f.dp[0];
+    out.tout[0][1] = f.dp[1];
+    out.tout[1][0] = f.ds[0];
+    out.tout[1][1] = f.ds[1];
+  } else {
+    const ModePair b = find_modes(P, qx, qy, q2, s_hat, -1.0);
+    const double kzm = kz_for(P.n_outside, q2);
+    const glm::dvec3 kf(qx, qy, kzm), kr(qx, qy, -kzm);
+    const glm::dvec3 pf = glm::cross(s_hat, kf / P.n_outside), pr = glm::cross(s_hat, kr / P.n_outside);
+    Tangential mode_f[2], mode_b[2];
+    for (int i = 0; i < 2; ++i) {
+      // Forward modes normalised to unit power flux S_z = (E × H)_z, so that the mode amplitudes
+      // are power amplitudes and the unitary bulk matrix N (optical activity) conserves energy.
+      const glm::dvec3 kf_i(qx, qy, f.kz[i]);
+      const glm::dvec3 E = P.eta * f.D[i];  // E = η·D
+      const double Sz = glm::cross(E, glm::cross(kf_i, E)).z;
+      mode_f[i] = tangential(kf_i, E / std::sqrt(std::max(Sz, 1e-300)));
+      mode_b[i] = tangential(glm::dvec3(qx, qy, b.kz[i]), P.eta * b.D[i]);
     }
-    const glm::dvec3 p_i = glm::cross(s_hat, s_i[i]);
-    const glm::dvec3 D = out.dp[i] * p_i + out.ds[i] * s_hat;
+    auto neg = [](Tangential t) {
+      for (double& v : t.v) v = -v;
+      return t;
+    };
+    // Entry: a1·ψ1 + a2·ψ2 − r_p·ψ_rp − r_s·ψ_rs = ψ_inc, for incident p and s.
+    const Tangential in_cols[4] = {mode_f[0], mode_f[1], neg(tangential(kr, pr)), neg(tangential(kr, s_hat))};
+    const Tangential in_rhs[2] = {tangential(kf, pf), tangential(kf, s_hat)};
+    double xin[2][4];
+    solve4(in_cols, in_rhs, xin);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) out.tin[i][j] = xin[j][i];
+    // Exit: t_p·ψ_tp + t_s·ψ_ts − b1·ψ_b1 − b2·ψ_b2 = ψ_mode, for each forward mode.
+    const Tangential out_cols[4] = {tangential(kf, pf), tangential(kf, s_hat), neg(mode_b[0]), neg(mode_b[1])};
+    double xout[2][4];
+    solve4(out_cols, mode_f, xout);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) out.tout[i][j] = xout[j][i];
+  }
+
+  for (int i = 0; i < 2; ++i) {
+    const double ci = f.s[i].z;
     double kappa = 0.0;
-    if (P.absorbing) kappa = std::min(0.5 * quad(P.mu_tensor, D, D) * d / ci, kMaxKappa);
+    if (P.absorbing) kappa = std::min(0.5 * glm::dot(f.D[i], P.mu_tensor * f.D[i]) * d / ci, kMaxKappa);
     out.kappa[i] = kappa;
-    t_total[i] = t;
-    (i == 0 ? m.n1 : m.n2) = n;
-    (i == 0 ? m.e1 : m.e2) = out.dp[i] * out.p_air + out.ds[i] * s_hat;
     // Poynting direction E × (k × E) = k|E|² − E(E·k), E = η·D (Born & Wolf §15.2).
-    const glm::dvec3 E = P.eta * D;
-    const glm::dvec3 ray = s_i[i] * glm::dot(E, E) - E * glm::dot(E, s_i[i]);
+    const glm::dvec3 E = P.eta * f.D[i];
+    const glm::dvec3 ray = f.s[i] * glm::dot(E, E) - E * glm::dot(E, f.s[i]);
     (i == 0 ? m.walkoff1 : m.walkoff2) = glm::dvec3(ray.x, ray.y, 0.0) * (d / ray.z);
+    // Mode transmission: a wave polarized along the mode's (p, s) direction, through mode i only.
+    const double a = out.tin[i][0] * f.dp[i] + out.tin[i][1] * f.ds[i];
+    const double t = std::hypot(out.tout[0][i], out.tout[1][i]) * std::abs(a) * std::exp(-kappa);
+    (i == 0 ? m.t1 : m.t2) = t;
+    (i == 0 ? m.e1 : m.e2) = f.dp[i] * out.p_air + f.ds[i] * s_hat;
   }
-  // Right-handed mode pair (det P > 0) so that σ2 below means a counter-clockwise rotation.
-  if (out.dp[0] * out.ds[1] - out.ds[0] * out.dp[1] < 0.0) {
-    out.dp[1] = -out.dp[1];
-    out.ds[1] = -out.ds[1];
-    m.e2 = -m.e2;
-  }
-  m.kz1 = kz[0];
-  m.kz2 = kz[1];
-  m.s1 = s_i[0];
-  m.s2 = s_i[1];
-  m.t1 = t_total[0] * std::exp(-out.kappa[0]);
-  m.t2 = t_total[1] * std::exp(-out.kappa[1]);
-  m.retardation_nm = std::max(kz[1] - kz[0], 0.0) * d * 1e3;
-  m.mean_phase_rad = P.k0_per_um * d * 0.5 * (kz[0] + kz[1]);
+  m.n1 = f.n[0];
+  m.n2 = f.n[1];
+  m.kz1 = f.kz[0];
+  m.kz2 = f.kz[1];
+  m.s1 = f.s[0];
+  m.s2 = f.s[1];
+  m.retardation_nm = std::max(f.kz[1] - f.kz[0], 0.0) * d * 1e3;
+  m.mean_phase_rad = P.k0_per_um * d * 0.5 * (f.kz[0] + f.kz[1]);
   out.alpha = 0.0;
   if (P.rho_rad_per_um != 0.0) {
-    const glm::dvec3 s_mean = normal_from(qx, qy, 0.5 * (kz[0] + kz[1]));
+    const glm::dvec3 s_mean = unit(glm::dvec3(qx, qy, 0.5 * (f.kz[0] + f.kz[1])));
     const double cos_c = glm::dot(s_mean, P.optic_axis);
     out.alpha = -P.rho_rad_per_um * cos_c * cos_c * d / s_mean.z;
   }
-  out.fresnel_t[0] = t_total[0];
-  out.fresnel_t[1] = t_total[1];
   return out;
 }
 
@@ -264,16 +341,11 @@ JonesMatrix plate_jones(const PreparedPlate& plate, const glm::dvec3& k_air) {
     n12 = -e0 * S * h2;
     n21 = e0 * S * h2;
   }
-  // J_ps = P · diag(t) · N · P⁻¹ with P = [[dp0, dp1], [ds0, ds1]] (the Fresnel products t_in·t_out
-  // of a mode are applied on its own column; for N diagonal this is exact within the model).
-  const double t0 = s.fresnel_t[0], t1 = s.fresnel_t[1];
-  const double det = s.dp[0] * s.ds[1] - s.dp[1] * s.ds[0];
-  const double i00 = s.ds[1] / det, i01 = -s.dp[1] / det, i10 = -s.ds[0] / det, i11 = s.dp[0] / det;
-  const complexd a00 = t0 * n11, a01 = t0 * n12, a10 = t1 * n21, a11 = t1 * n22;  // diag(t)·N
-  const complexd b00 = a00 * i00 + a01 * i10, b01 = a00 * i01 + a01 * i11;      // ·P⁻¹
-  const complexd b10 = a10 * i00 + a11 * i10, b11 = a10 * i01 + a11 * i11;
-  const JonesMatrix Jps{s.dp[0] * b00 + s.dp[1] * b10, s.dp[0] * b01 + s.dp[1] * b11,
-                        s.ds[0] * b00 + s.ds[1] * b10, s.ds[0] * b01 + s.ds[1] * b11};
+  // J_ps = T_out · N · T_in.
+  const complexd a00 = n11 * s.tin[0][0] + n12 * s.tin[1][0], a01 = n11 * s.tin[0][1] + n12 * s.tin[1][1];
+  const complexd a10 = n21 * s.tin[0][0] + n22 * s.tin[1][0], a11 = n21 * s.tin[0][1] + n22 * s.tin[1][1];
+  const JonesMatrix Jps{s.tout[0][0] * a00 + s.tout[0][1] * a10, s.tout[0][0] * a01 + s.tout[0][1] * a11,
+                        s.tout[1][0] * a00 + s.tout[1][1] * a10, s.tout[1][0] * a01 + s.tout[1][1] * a11};
   // Change of basis (a, b) of k_air → (p, s): C = [[p·a, p·b], [s·a, s·b]]; J_ab = Cᵀ·J_ps·C.
   glm::dvec3 a, b;
   transverse_basis(k_air, a, b);
