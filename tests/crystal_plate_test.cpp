@@ -283,6 +283,27 @@ TEST(Stability, TinyBirefringenceThickPlatesAndGrazingRaysStayFinite) {
     }
   }
   EXPECT_GT(n, 1000);
+  // Biaxial plate probed at and around an optic axis (the conical point of the index surface),
+  // with the exact faces: finite, lossless bound respected, no jump larger than the approach.
+  const Crystal bx = Crystal::biaxial_constant("b", 1.50, 1.51, 1.60);
+  const PlateSpec pb = plate_of(bx, biaxial_orientation({1, 0, 0}, {0, 0, 1}), 1e4, true);
+  const double q_axis = 1.51 * std::sin(0.5 * optic_angle_2v_rad(1.50, 1.51, 1.60));
+  for (double dq : {0.0, 1e-14, -1e-14, 1e-10, -1e-10, 1e-6, -1e-6}) {
+    for (double az : {0.0, 1e-12, 1e-8, 1e-4, -1e-4}) {
+      const glm::dvec3 k = dir_from_sin(q_axis + dq, az);
+      const JonesMatrix J = plate_jones(pb, k, 550.0);
+      ASSERT_TRUE(finite(J)) << dq << " " << az;
+      const double power = std::norm(J.xx) + std::norm(J.yx);  // x-polarized input
+      EXPECT_LE(power, 1.0 + 1e-12);
+      EXPECT_GT(power, 0.98);  // two faces of Δn ≈ 0.03 reflect < 1 %
+    }
+  }
+  // Outer medium of index 1 at exactly grazing incidence: no light enters, nothing is NaN.
+  PlateSpec pg = plate_of(calcite, uniaxial_orientation({1, 0, 1}), 30.0, true);
+  pg.n_outside = 1.0;
+  const JonesMatrix Jg = plate_jones(pg, {1.0, 0.0, 0.0}, 550.0);
+  ASSERT_TRUE(finite(Jg));
+  EXPECT_LT(std::norm(Jg.xx) + std::norm(Jg.yy), 1e-6);
   // 10 mm of calcite at normal incidence, axis in the plane: Γ = (no − ne)·d ≈ 1.7 mm, phase kept.
   const PlateSpec thick = plate_of(calcite, uniaxial_orientation({1, 0, 0}), 1e4);
   const glm::dvec3 nc = calcite.principal_indices(589.3);

@@ -89,12 +89,12 @@ struct Eigen2 {
 // Symmetric 2×2 [[a, b], [b, c]] in closed form; at degeneracy any orthogonal pair (here p, s).
 inline Eigen2 eigen_sym2(double a, double b, double c) {
   const double m = 0.5 * (a + c), h = 0.5 * (a - c);
-  const double r = std::hypot(h, b);
+  const double r = std::sqrt(h * h + b * b);
   Eigen2 e{m + r, m - r, 1.0, 0.0};
   if (r > 0.0) {
     double x, y;
     if (h >= 0.0) { x = h + r; y = b; } else { x = b; y = r - h; }
-    const double len = std::hypot(x, y);
+    const double len = std::sqrt(x * x + y * y);
     e.fx = x / len;
     e.fy = y / len;
   }
@@ -142,17 +142,30 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
     mp.kz[0] = o_fast ? kzo : kze;
     mp.kz[1] = o_fast ? kze : kzo;
   } else {
+    // Fixed point n = g(n), g(n) = index of the mode for the wave normal refracted with index n,
+    // solved by the secant method on g(n) − n from the indices at the nβ normal; the plain
+    // iteration contracts by ~(nγ − nα)·tanθ/n, so a handful of steps reach 1e-15.
+    auto g = [&](double n, int i) {
+      const glm::dvec3 sv = unit(glm::dvec3(qx, qy, dir * kz_for(n, q2)));
+      const Eigen2 e = wave_normal_modes(P.eta, sv, s_hat);
+      return 1.0 / std::sqrt(i == 0 ? e.lam_fast : e.lam_slow);
+    };
+    const Eigen2 e0 = wave_normal_modes(P.eta, unit(glm::dvec3(qx, qy, dir * kz_for(P.mean_n, q2))), s_hat);
+    const double start[2] = {1.0 / std::sqrt(e0.lam_fast), 1.0 / std::sqrt(e0.lam_slow)};
     for (int i = 0; i < 2; ++i) {
-      double n = P.mean_n;
-      for (int it = 0; it < 60; ++it) {
-        const glm::dvec3 sv = unit(glm::dvec3(qx, qy, dir * kz_for(n, q2)));
-        const Eigen2 e = wave_normal_modes(P.eta, sv, s_hat);
-        const double n_new = 1.0 / std::sqrt(i == 0 ? e.lam_fast : e.lam_slow);
-        const double diff = std::abs(n_new - n);
-        n = n_new;
-        if (diff <= 1e-15) break;
+      double n0 = start[i], f0 = g(n0, i) - n0;
+      double n1 = n0 + f0;
+      for (int it = 0; it < 30 && f0 != 0.0; ++it) {
+        const double f1 = g(n1, i) - n1;
+        if (std::abs(f1) <= 1e-15) break;
+        const double den = f1 - f0;
+        double n2 = den != 0.0 ? n1 - f1 * (n1 - n0) / den : n1 + f1;
+        if (!(std::abs(n2 - n1) <= 2.0 * std::abs(f1) + 1e-15)) n2 = n1 + f1;  // secant went astray
+        n0 = n1;
+        f0 = f1;
+        n1 = n2;
       }
-      mp.kz[i] = dir * kz_for(n, q2);
+      mp.kz[i] = dir * kz_for(n1, q2);
     }
   }
   for (int i = 0; i < 2; ++i) {
@@ -163,9 +176,21 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
     mp.ds[i] = i == 0 ? e.fy : e.fx;
   }
   // Right-handed pair (det > 0) so that σ2 in the mode basis is a counter-clockwise rotation.
-  if (mp.dp[0] * mp.ds[1] - mp.ds[0] * mp.dp[1] < 0.0) {
+  double det = mp.dp[0] * mp.ds[1] - mp.ds[0] * mp.dp[1];
+  if (det < 0.0) {
     mp.dp[1] = -mp.dp[1];
     mp.ds[1] = -mp.ds[1];
+    det = -det;
+  }
+  // Next to an optic axis the D directions turn fast around it, and the two normals (which differ
+  // by rounding there) can resolve them inconsistently. The modes are then nearly degenerate and
+  // any orthogonal pair describes them: take the pair of the mean normal (det = 1).
+  if (det < 0.99) {
+    const Eigen2 e = wave_normal_modes(P.eta, unit(glm::dvec3(qx, qy, 0.5 * (mp.kz[0] + mp.kz[1]))), s_hat);
+    mp.dp[0] = e.fx;
+    mp.ds[0] = e.fy;
+    mp.dp[1] = -e.fy;
+    mp.ds[1] = e.fx;
   }
   for (int i = 0; i < 2; ++i) mp.D[i] = mp.dp[i] * glm::cross(s_hat, mp.s[i]) + mp.ds[i] * s_hat;
   return mp;
@@ -244,7 +269,9 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
     out.tout[1][1] = f.ds[1];
   } else {
     const ModePair b = find_modes(P, qx, qy, q2, s_hat, -1.0);
-    const double kzm = kz_for(P.n_outside, q2);
+    // Grazing in the outer medium (k_z → 0): incident and reflected waves coincide and nothing
+    // enters; a floor keeps the face systems regular (transmission → 0 continuously).
+    const double kzm = std::max(kz_for(P.n_outside, q2), 1e-12);
     const glm::dvec3 kf(qx, qy, kzm), kr(qx, qy, -kzm);
     const glm::dvec3 pf = glm::cross(s_hat, kf / P.n_outside), pr = glm::cross(s_hat, kr / P.n_outside);
     Tangential mode_f[2], mode_b[2];
@@ -287,7 +314,8 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
     (i == 0 ? m.walkoff1 : m.walkoff2) = glm::dvec3(ray.x, ray.y, 0.0) * (d / ray.z);
     // Mode transmission: a wave polarized along the mode's (p, s) direction, through mode i only.
     const double a = out.tin[i][0] * f.dp[i] + out.tin[i][1] * f.ds[i];
-    const double t = std::hypot(out.tout[0][i], out.tout[1][i]) * std::abs(a) * std::exp(-kappa);
+    const double t = std::sqrt(out.tout[0][i] * out.tout[0][i] + out.tout[1][i] * out.tout[1][i]) *
+                     std::abs(a) * std::exp(-kappa);
     (i == 0 ? m.t1 : m.t2) = t;
     (i == 0 ? m.e1 : m.e2) = f.dp[i] * out.p_air + f.ds[i] * s_hat;
   }
@@ -329,8 +357,12 @@ JonesMatrix plate_jones(const PreparedPlate& plate, const glm::dvec3& k_air) {
   const double h2 = s.alpha;
   complexd n11, n12, n21, n22;
   if (h2 == 0.0) {
-    n11 = std::exp(-I * (h0 + h3));
-    n22 = std::exp(-I * (h0 - h3));
+    // Linear modes: diag(e^{−κ1}·e^{−iδ/2}, e^{−κ2}·e^{+iδ/2}).
+    const double c = std::cos(0.5 * delta), sn = std::sin(0.5 * delta);
+    const double g1 = s.kappa[0] != 0.0 ? std::exp(-s.kappa[0]) : 1.0;
+    const double g2 = s.kappa[1] != 0.0 ? std::exp(-s.kappa[1]) : 1.0;
+    n11 = complexd(g1 * c, -g1 * sn);
+    n22 = complexd(g2 * c, g2 * sn);
     n12 = n21 = 0.0;
   } else {
     const complexd w = std::sqrt(h3 * h3 + h2 * h2);

@@ -3,10 +3,11 @@
 // medium: the two plane-wave eigenmodes for a given incident direction and wavelength, and the
 // plate's Jones matrix. Model (Debelov & Kozlov 2013 ref. [1]; Born & Wolf §15.2–15.3; Yariv & Yeh
 // "Optical Waves in Crystals" ch. 4): the tangential wave vector is conserved at the faces; each
-// eigenmode's normal component k_z follows from the Fresnel equation of wave normals; the
-// interface amplitudes are those of an isotropic interface with the mode's own index, applied to
-// the mode's TE/TM projection (first order in the birefringence, see plate.cpp); absorption and
-// optical activity are treated as perturbations of the linear, lossless modes.
+// eigenmode's normal component k_z follows from the Fresnel equation of wave normals (closed form
+// for uniaxial crystals, a converged fixed point for biaxial ones); the face amplitudes are exact
+// single-interface solutions of the tangential E/H boundary conditions (multiple reflections inside
+// the plate are neglected); absorption and optical activity are perturbations of the linear,
+// lossless modes. Details and approximations: plate.cpp.
 //
 // Phase convention: a plane wave is e^{i(k·r − ωt)}, so a path adds phase +k0·n·L and the slow
 // wave's Jones amplitude carries the larger phase.
@@ -53,7 +54,8 @@ struct PlateModes {         // the two eigenmodes inside the plate for that wave
   double n1, n2;            // effective refractive indices (n1 ≤ n2: n2 is the slow wave)
   glm::dvec3 e1, e2;        // their field directions projected to the transverse plane of k_air (unit)
   double retardation_nm;    // Γ = d·(k_z2 − k_z1)/k0: optical path difference slow − fast (≥ 0)
-  double t1, t2;            // amplitude transmissions (Fresnel at both faces × absorption)
+  double t1, t2;            // amplitude transmissions (both faces × absorption) of a wave polarized
+                            // along e1 (e2) through that mode alone; 1 − R per face at normal incidence
   // Extra detail (same wave):
   glm::dvec3 s1, s2;        // unit wave normals inside the crystal
   double kz1, kz2;          // normal wave-vector components in units of k0 (k_z = n·s_z)
@@ -68,7 +70,8 @@ PlateModes plate_modes(const PreparedPlate& plate, const glm::dvec3& k_air);
 // k.z > 0) at wavelength_nm, expressed in transverse_basis(k_air) before and after (the direction
 // after equals the one before). The common propagation phase k0·d·(k_z1 + k_z2)/2 is removed;
 // only the relative phase ±k0·d·(k_z2 − k_z1)/2 of the two modes remains. No allocation, no
-// virtual call.
+// virtual call in the PreparedPlate overload (the PlateSpec one evaluates the dispersion first).
+// k_air must be a unit vector with √(k.x² + k.y²) < n_outside.
 JonesMatrix plate_jones(const PlateSpec& plate, const glm::dvec3& k_air, double wavelength_nm);
 JonesMatrix plate_jones(const PreparedPlate& plate, const glm::dvec3& k_air);
 
