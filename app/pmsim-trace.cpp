@@ -1,0 +1,168 @@
+// pmsim-trace: trace one polarized ray through one lens (the SML) and print the bundle as JSON.
+// The interface is a contract others script against (issue #2); see usage() below. Bad input:
+// a message naming the key on stderr, exit code 2, nothing on stdout.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <glm/geometric.hpp>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/input_error.h"
+#include "core/lens/lens.h"
+#include "core/lens/lens_tracer.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: pmsim-trace --lens FILE.json --origin x,y,z --dir x,y,z --pol x,y,z --wavelength-nm L\n"
+    "                   [--intensity I] [--source ch] [--delta-rad d] [--optical-path-mm O]\n"
+    "                   [--depth dT] [--tir stop|split] [--ledge stop]\n"
+    "Traces one linearly polarized ray through the lens and prints {rays, events, absorbed} as\n"
+    "JSON. Defaults: intensity 1, source 0, delta 0, optical path 0, depth 3, tir stop.\n";
+
+using pmsim::InputError;
+
+double parse_double(const std::string& key, const std::string& v) {
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end != '\0' || !std::isfinite(x)) throw InputError("", key, v, "expected a finite number");
+  return x;
+}
+
+long parse_int(const std::string& key, const std::string& v) {
+  char* end = nullptr;
+  const long x = std::strtol(v.c_str(), &end, 10);
+  if (v.empty() || *end != '\0') throw InputError("", key, v, "expected an integer");
+  return x;
+}
+
+glm::dvec3 parse_vec3(const std::string& key, const std::string& v) {
+  std::vector<double> c;
+  std::stringstream ss(v);
+  std::string item;
+  while (std::getline(ss, item, ',')) c.push_back(parse_double(key, item));
+  if (c.size() != 3) throw InputError("", key, v, "expected three comma-separated numbers x,y,z");
+  return {c[0], c[1], c[2]};
+}
+
+std::string num(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+std::string vec(const glm::dvec3& v) { return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "]"; }
+
+int run(int argc, char** argv) {
+  std::map<std::string, std::string> a;
+  static const char* known[] = {"--lens",      "--origin",    "--dir",       "--pol",
+                                "--wavelength-nm", "--intensity", "--source",  "--delta-rad",
+                                "--optical-path-mm", "--depth", "--tir",       "--ledge"};
+  for (int i = 1; i < argc; ++i) {
+    std::string k = argv[i];
+    if (k == "--help" || k == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    std::string v;
+    const auto eq = k.find('=');
+    if (eq != std::string::npos) {
+      v = k.substr(eq + 1);
+      k = k.substr(0, eq);
+    } else {
+      if (i + 1 >= argc) throw InputError("", k, "", "missing value");
+      v = argv[++i];
+    }
+    bool ok = false;
+    for (const char* n : known) ok |= k == n;
+    if (!ok) throw InputError("", k, v, "unknown option (see --help)");
+    if (a.count(k)) throw InputError("", k, v, "given twice");
+    a[k] = v;
+  }
+  for (const char* req : {"--lens", "--origin", "--dir", "--pol", "--wavelength-nm"}) {
+    if (!a.count(req)) throw InputError("", req, "", "required option missing (see --help)");
+  }
+
+  pmsim::PolarizedRay in;
+  in.origin = parse_vec3("--origin", a["--origin"]);
+  const glm::dvec3 dir = parse_vec3("--dir", a["--dir"]);
+  if (!(glm::length(dir) > 0.0)) throw InputError("", "--dir", a["--dir"], "must be a non-zero vector");
+  in.dir = glm::normalize(dir);
+  const glm::dvec3 pol = parse_vec3("--pol", a["--pol"]);
+  if (!(glm::length(pol) > 0.0)) throw InputError("", "--pol", a["--pol"], "must be a non-zero vector");
+  in.pol = glm::normalize(pol);
+  if (std::abs(glm::dot(in.pol, in.dir)) > 1e-6)
+    throw InputError("", "--pol", a["--pol"], "must be perpendicular to --dir (to 1e-6)");
+  in.wavelength_nm = parse_double("--wavelength-nm", a["--wavelength-nm"]);
+  if (!(in.wavelength_nm > 0.0)) throw InputError("", "--wavelength-nm", a["--wavelength-nm"], "must be > 0");
+  if (a.count("--intensity")) {
+    in.intensity = parse_double("--intensity", a["--intensity"]);
+    if (in.intensity < 0.0) throw InputError("", "--intensity", a["--intensity"], "must be ≥ 0");
+  }
+  if (a.count("--source")) {
+    const long s = parse_int("--source", a["--source"]);
+    if (s < INT32_MIN || s > INT32_MAX) throw InputError("", "--source", a["--source"], "out of range");
+    in.source = int(s);
+  }
+  if (a.count("--delta-rad")) in.delta_rad = parse_double("--delta-rad", a["--delta-rad"]);
+  if (a.count("--optical-path-mm")) in.optical_path_mm = parse_double("--optical-path-mm", a["--optical-path-mm"]);
+
+  pmsim::LensTraceOptions opt;
+  if (a.count("--depth")) {
+    const long d = parse_int("--depth", a["--depth"]);
+    if (d < 0 || d > 64) throw InputError("", "--depth", a["--depth"], "must be in 0..64");
+    opt.max_depth = int(d);
+  }
+  if (a.count("--tir")) {
+    const std::string& t = a["--tir"];
+    if (t == "stop") opt.tir = pmsim::TirMode::Stop;
+    else if (t == "split") opt.tir = pmsim::TirMode::Split;
+    else throw InputError("", "--tir", t, "expected stop or split");
+  }
+  if (a.count("--ledge") && a["--ledge"] != "stop")
+    throw InputError("", "--ledge", a["--ledge"], "expected stop");
+
+  const pmsim::Lens lens(pmsim::load_lens_spec(a["--lens"]));
+  const pmsim::LensMedia media = lens.media(in.wavelength_nm);
+  if (!std::isfinite(media.n_glass) || !(media.n_glass > 0) || !std::isfinite(media.n_medium))
+    throw InputError("", "--wavelength-nm", a["--wavelength-nm"], "no refractive index there");
+  pmsim::LensBundle b;
+  pmsim::trace_lens(lens.geometry(), media, in, opt, b);
+
+  std::string out = "{\"rays\":[";
+  for (size_t i = 0; i < b.rays.size(); ++i) {
+    const pmsim::PolarizedRay& r = b.rays[i];
+    if (i) out += ",";
+    out += "{\"origin\":" + vec(r.origin) + ",\"dir\":" + vec(r.dir) + ",\"pol\":" + vec(r.pol) +
+           ",\"intensity\":" + num(r.intensity) + ",\"delta_rad\":" + num(r.delta_rad) +
+           ",\"optical_path_mm\":" + num(r.optical_path_mm) + ",\"depth\":" + std::to_string(r.depth) +
+           ",\"source\":" + std::to_string(r.source) + ",\"wavelength_nm\":" + num(r.wavelength_nm) + "}";
+  }
+  out += "],\"events\":[";
+  for (size_t i = 0; i < b.events.size(); ++i) {
+    const pmsim::LensEvent& e = b.events[i];
+    if (i) out += ",";
+    out += std::string("{\"type\":\"") + pmsim::to_string(e.type) + "\",\"depth\":" +
+           std::to_string(e.depth) + ",\"intensity\":" + num(e.intensity) + ",\"point\":" + vec(e.point) + "}";
+  }
+  out += "],\"absorbed\":" + num(b.absorbed) + "}\n";
+  std::cout << out << std::flush;
+  return std::cout ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const InputError& e) {
+    std::cerr << "pmsim-trace: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pmsim-trace: " << e.what() << "\n";
+    return 1;
+  }
+}
