@@ -150,3 +150,50 @@ TEST(BeerLambert, IntensityDecaysExponentiallyOverKnownPath) {
   // 1 mm of optical path is 1e6/λ[nm] waves.
   EXPECT_NEAR(propagation_phase_rad(0.5e-3, 500.0), 2 * M_PI, 1e-12);
 }
+
+TEST(PolarizationFrame, IsRightHandedForIncidentAndRefractedAndIndependentOfNormalSign) {
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 2000; ++k) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+    const glm::dvec3 N = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+    const PolarizationFrame f = polarization_frame(d, N);
+    // s ⟂ d and N, s × p_i = d (orthonormal to rounding, 1e-14).
+    ASSERT_NEAR(glm::dot(f.s, d), 0.0, 1e-14);
+    ASSERT_NEAR(glm::dot(f.s, N), 0.0, 1e-14);
+    ASSERT_NEAR(glm::length(glm::cross(f.s, f.p_i) - d), 0.0, 1e-14);
+    const glm::dvec3 r = reflect_dir(d, N);
+    ASSERT_NEAR(glm::length(glm::cross(p_reflected(f.s, r), f.s) - r), 0.0, 1e-14);
+    // The physical outcome does not depend on which way N points (both s and p flip together).
+    const PolarizedRay in = make_ray(d, {g(rng), g(rng), g(rng)});
+    InteractionResult a, b;
+    interact(in, {0, 0, 0}, N, 1.2, 1.7, FresnelModel::Exact, a);
+    interact(in, {0, 0, 0}, -N, 1.2, 1.7, FresnelModel::Exact, b);
+    ASSERT_EQ(a.reflected_count, b.reflected_count);
+    ASSERT_NEAR(glm::length(a.reflected[0].pol - b.reflected[0].pol), 0.0, 1e-14);
+    ASSERT_NEAR(glm::length(a.refracted.pol - b.refracted.pol), 0.0, 1e-14);
+  }
+  // Exactly normal incidence: a valid frame, no NaN.
+  const PolarizationFrame f = polarization_frame({0, 0, 1}, {0, 0, -1});
+  EXPECT_NEAR(glm::length(f.s), 1.0, 1e-15);
+  EXPECT_NEAR(glm::dot(f.s, glm::dvec3(0, 0, 1)), 0.0, 1e-15);
+}
+
+TEST(InterfaceOblique, ReflectedFieldAgreesWithBornAndWolfInTheirFrame) {
+  // Independent check of the frame convention: Born & Wolf write the reflected field with a
+  // right-handed frame (s, p_BW, r), p_BW = r × s = −p_r, and r∥ = tg(α−γ)/tg(α+γ) (no sign flip).
+  const double a = 35 * M_PI / 180, n21 = 1.5;
+  const double gam = std::asin(std::sin(a) / n21);
+  const glm::dvec3 d{std::sin(a), 0, std::cos(a)}, N{0, 0, -1};
+  const PolarizedRay in = make_ray(d, {0.3, 0.8, -0.3 * std::sin(a) / std::cos(a)});
+  InteractionResult res;
+  interact(in, {0, 0, 0}, N, 1.0, n21, FresnelModel::Exact, res);
+  const PolarizationFrame f = polarization_frame(d, N);
+  const glm::dvec3 r = res.reflected_dir;
+  const glm::dvec3 p_bw = glm::cross(r, f.s);
+  const double rs_bw = -std::sin(a - gam) / std::sin(a + gam);
+  const double rp_bw = std::tan(a - gam) / std::tan(a + gam);
+  const glm::dvec3 E = rs_bw * glm::dot(in.pol, f.s) * f.s + rp_bw * glm::dot(in.pol, f.p_i) * p_bw;
+  const glm::dvec3 got = std::sqrt(res.reflected[0].intensity) * res.reflected[0].pol;
+  EXPECT_NEAR(glm::length(got - E), 0.0, 1e-14);  // trig rounding of O(1) values
+}
