@@ -185,7 +185,9 @@ TEST(MineralFile, BadInputNamesFileKeyAndValue) {
     } catch (const InputError& e) {
       EXPECT_EQ(e.file, path);
       EXPECT_EQ(e.key, c.key);
-      if (*c.value) EXPECT_EQ(e.value, c.value);
+      if (*c.value) {
+        EXPECT_EQ(e.value, c.value);
+      }
     }
     std::filesystem::remove(path);
   }

@@ -219,7 +219,9 @@ TEST(Extinction, OpticAxisAlongPolarizerOrAnalyzerIsDark) {
                             (m.t1 * m.t1 + m.t2 * m.t2 - 2 * m.t1 * m.t2 * std::cos(delta));
     EXPECT_NEAR(I, expected, 1e-12 * expected + 1e-28) << stage;
     // Extinction every 90°: the stage angle itself is rounded (sin 2φ ~ 1e-15), so I ≲ 1e-28.
-    if (std::abs(std::sin(2 * stage)) < 1e-12) EXPECT_LT(I, 1e-26);
+    if (std::abs(std::sin(2 * stage)) < 1e-12) {
+      EXPECT_LT(I, 1e-26);
+    }
   }
   // Oblique ray in the plane of incidence containing the optic axis: pure TM extraordinary mode,
   // so a polarizer along the basis a (= p) axis is still extinguished exactly. (Calcite: quartz's
