@@ -1,0 +1,375 @@
+#include "ui/app.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "core/io/image_file.h"
+#include "core/io/input_error.h"
+#include "core/io/scene_file.h"
+#include "ui/teaching.h"
+
+namespace pmsim::ui {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Objectives of the brief, in the order of the 1…4 shortcuts.
+constexpr struct { double magnification, na; } kObjectives[] = {
+    {4, 0.10}, {10, 0.25}, {40, 0.65}, {50, 0.85}};
+
+std::string extension_lower(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+double wrap_deg(double angle_deg) {
+  if (!std::isfinite(angle_deg)) return 0.0;
+  double a = std::fmod(angle_deg, 360.0);
+  if (a < 0) a += 360.0;
+  return a >= 360.0 ? 0.0 : a;
+}
+
+App::App(const Scene& scene, int renderer_threads)
+    : scene_(scene),
+      renderer_(std::make_unique<ProgressiveRenderer>(renderer_threads)),
+      teaching_(std::make_unique<Teaching>()) {
+  layout_ = compute_layout(window_w_, window_h_);
+  try {
+    validate_scene(scene_);
+    renderer_->restart(scene_);
+  } catch (const std::exception& e) {
+    // A bad initial scene (the drivers validate before, so only from code): show it and render
+    // the defaults rather than nothing.
+    fail(e.what());
+    scene_ = Scene{};
+    renderer_->restart(scene_);
+  }
+  generation_ = 1;
+}
+
+App::~App() {
+  renderer_->cancel();
+  renderer_.reset();
+}
+
+void App::set_window_size(int width, int height) {
+  window_w_ = width;
+  window_h_ = height;
+  layout_ = compute_layout(width, height);
+}
+
+bool App::commit(const Scene& candidate) {
+  try {
+    validate_scene(candidate);
+    renderer_->restart(candidate);
+  } catch (const std::exception& e) {
+    fail(e.what());
+    ++counters_.rejected;
+    return false;
+  }
+  scene_ = candidate;
+  ++generation_;
+  ++counters_.commits;
+  error_.clear();
+  return true;
+}
+
+bool App::set(std::string_view assignment) {
+  Scene candidate = scene_;
+  try {
+    apply_setting(candidate, assignment);
+  } catch (const std::exception& e) {
+    fail(e.what());
+    ++counters_.rejected;
+    return false;
+  }
+  return commit(candidate);
+}
+
+void App::fail(const std::string& message) {
+  error_ = message;
+  ++counters_.failures;
+  std::fprintf(stderr, "pmsim: %s\n", message.c_str());
+}
+
+void App::note(const std::string& message) { notice_ = message; }
+
+bool App::load_scene(const std::string& path) {
+  std::vector<std::string> warnings;
+  Scene loaded;
+  try {
+    loaded = load_scene_file(path, &warnings);
+  } catch (const std::exception& e) {
+    fail(e.what());
+    ++counters_.rejected;
+    return false;
+  }
+  for (const auto& w : warnings) std::fprintf(stderr, "pmsim: warning: %s\n", w.c_str());
+  if (!commit(loaded)) return false;
+  scene_path_ = path;
+  note("loaded " + path);
+  return true;
+}
+
+bool App::save_scene(const std::string& path) {
+  try {
+    save_scene_file(scene_, path);
+  } catch (const std::exception& e) {
+    fail(e.what());
+    return false;
+  }
+  note("saved " + path);
+  return true;
+}
+
+bool App::export_field(const std::string& path) {
+  if (image_.width <= 0) {
+    fail("export " + path + ": no image rendered yet");
+    return false;
+  }
+  const std::string ext = extension_lower(path);
+  if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff") {
+    fail("export " + path + ": use .png (sRGB) or .exr / .tif (linear)");
+    return false;
+  }
+  try {
+    write_image(path, image_.width, image_.height, image_.rgb, scene_to_json(scene_));
+  } catch (const std::exception& e) {
+    fail(e.what());
+    return false;
+  }
+  note("field exported to " + path);
+  return true;
+}
+
+std::optional<std::string> App::take_window_screenshot_request() {
+  auto r = window_shot_;
+  window_shot_.reset();
+  return r;
+}
+
+bool App::write_window_pixels(const std::string& path, int width, int height,
+                              const std::vector<std::uint8_t>& rgb8) {
+  try {
+    write_image_rgb8(path, width, height, rgb8, scene_to_json(scene_));
+  } catch (const std::exception& e) {
+    fail(e.what());
+    return false;
+  }
+  note("window saved to " + path);
+  return true;
+}
+
+bool App::wait_rendered(double timeout_s) const { return renderer_->wait(timeout_s); }
+
+void App::pull_snapshot() {
+  if (renderer_->snapshot(image_)) {
+    field_texture_.upload(image_.width, image_.height, image_.rgb);
+    ++counters_.uploads;
+  }
+}
+
+void App::frame() {
+  const auto t0 = std::chrono::steady_clock::now();
+  pull_snapshot();
+
+  Scene edit = scene_;
+  bool changed = false;
+  draw_controls(edit, changed);
+  draw_field(edit, changed);
+  draw_status();
+  draw_chart();
+  draw_teaching();
+  handle_shortcuts(edit, changed);
+  if (changed) {
+    edit.stage_deg = wrap_deg(edit.stage_deg);
+    commit(edit);
+  }
+
+  ++counters_.frames;
+  counters_.frame_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void App::draw_field(Scene& edit, bool& changed) {
+  const Layout& l = layout_;
+  ImGui::SetNextWindowPos(ImVec2(l.view.x, l.view.y));
+  ImGui::SetNextWindowSize(ImVec2(l.view.w, l.view.h));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.22f, 0.22f, 0.23f, 1.0f));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::Begin("##field", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoScrollWithMouse);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 p0(l.field.x, l.field.y), p1(l.field.x + l.field.w, l.field.y + l.field.h);
+  const float r = l.field_radius();
+  const ImVec2 c(l.field.cx(), l.field.cy());
+  // The field stop of the eyepiece: the image seen through a circle, as in the instrument.
+  if (field_texture_.valid())
+    draw->AddImageRounded(field_texture_.imgui_id(), p0, p1, ImVec2(0, 0), ImVec2(1, 1),
+                          IM_COL32_WHITE, r);
+  else
+    draw->AddCircleFilled(c, r, IM_COL32(0, 0, 0, 255), 96);
+  draw->AddCircle(c, r, IM_COL32(10, 10, 10, 255), 96, 2.0f);
+  if (reticle_) {
+    const ImU32 line = IM_COL32(15, 15, 15, 150);
+    draw->AddLine(ImVec2(c.x - r, c.y), ImVec2(c.x + r, c.y), line);
+    draw->AddLine(ImVec2(c.x, c.y - r), ImVec2(c.x, c.y + r), line);
+  }
+
+  // Grabbing the stage: dragging around the centre turns it by the angle swept.
+  ImGui::SetCursorScreenPos(p0);
+  ImGui::InvisibleButton("field_stage", ImVec2(l.field.w, l.field.h));
+  const ImVec2 m = ImGui::GetIO().MousePos;
+  const double mouse_angle_deg = std::atan2(-(m.y - c.y), m.x - c.x) * 180.0 / kPi;
+  if (ImGui::IsItemActivated()) {
+    dragging_ = true;
+    drag_angle_deg_ = mouse_angle_deg;
+  }
+  if (ImGui::IsItemActive() && dragging_) {
+    double delta = mouse_angle_deg - drag_angle_deg_;
+    if (delta > 180) delta -= 360;
+    if (delta < -180) delta += 360;
+    if (std::abs(delta) > 1e-6 && std::hypot(m.x - c.x, m.y - c.y) > 4.0) {
+      edit.stage_deg += delta;
+      changed = true;
+    }
+    drag_angle_deg_ = mouse_angle_deg;
+  } else {
+    dragging_ = false;
+  }
+  probe_hovered_ = ImGui::IsItemHovered();
+  if (probe_hovered_) {
+    probe_x_ = std::clamp((m.x - p0.x) / l.field.w, 0.0f, 1.0f);
+    probe_y_ = std::clamp((m.y - p0.y) / l.field.h, 0.0f, 1.0f);
+    draw->AddCircle(m, 5, IM_COL32(255, 220, 60, 220), 16, 1.5f);
+  }
+
+  // Error banner over the top of the field; the scene behind it is the last good one.
+  if (!error_.empty()) {
+    ImGui::SetCursorScreenPos(ImVec2(l.view.x + 8, l.view.y + 8));
+    ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.65f, 0.10f, 0.10f, 0.95f));
+    ImGui::BeginChild("##error", ImVec2(l.view.w - 16, 64), true);
+    ImGui::PushTextWrapPos(l.view.w - 100);
+    ImGui::TextUnformatted(error_.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::SetCursorPos(ImVec2(l.view.w - 90, 8));
+    if (ImGui::Button("Dismiss")) error_.clear();
+    ImGui::EndChild();
+    ImGui::PopStyleColor();
+  }
+  ImGui::End();
+  ImGui::PopStyleVar();
+  ImGui::PopStyleColor();
+}
+
+void App::draw_status() {
+  const Layout& l = layout_;
+  ImGui::SetNextWindowPos(ImVec2(l.status.x, l.status.y));
+  ImGui::SetNextWindowSize(ImVec2(l.status.w, l.status.h));
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
+  const RenderImage& im = image_;
+  const bool current = im.generation == generation_;
+  ImGui::Text("%s  %.1f spp  %d wl  pass %d  err %.2f dE00  %s  %.0f ms", current ? "" : "(previous)",
+              im.samples_per_pixel, im.wavelengths, im.passes, im.error_estimate,
+              im.converged ? "converged" : "refining", im.time_ms);
+  ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  %s", counters_.fps, counters_.frame_ms,
+              scene_.stage_deg, notice_.c_str());
+  if (ImGui::IsWindowHovered() && !im.model_report.empty())
+    ImGui::SetTooltip("%s", im.model_report.c_str());
+  ImGui::End();
+}
+
+void App::handle_shortcuts(Scene& edit, bool& changed) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;  // typing a path or a number is not a command
+  for (const Shortcut& s : shortcuts()) {
+    if (s.shift != io.KeyShift || s.ctrl != io.KeyCtrl) continue;
+    if (ImGui::IsKeyPressed(s.key, true)) apply_action(s.action, edit, changed);
+  }
+}
+
+void App::perform(Action action) {
+  Scene edit = scene_;
+  bool changed = false;
+  apply_action(action, edit, changed);
+  if (changed) {
+    edit.stage_deg = wrap_deg(edit.stage_deg);
+    commit(edit);
+  }
+}
+
+void App::apply_action(Action action, Scene& edit, bool& changed) {
+  auto change = [&] { changed = true; };
+  switch (action) {
+    case Action::StageCcw: edit.stage_deg += 1; change(); break;
+    case Action::StageCw: edit.stage_deg -= 1; change(); break;
+    case Action::StageCcwCoarse: edit.stage_deg += 15; change(); break;
+    case Action::StageCwCoarse: edit.stage_deg -= 15; change(); break;
+    case Action::StageZero: edit.stage_deg = 0; change(); break;
+    case Action::PolarizerUp: edit.polarizer_deg = wrap_deg(edit.polarizer_deg + 5); change(); break;
+    case Action::PolarizerDown: edit.polarizer_deg = wrap_deg(edit.polarizer_deg - 5); change(); break;
+    case Action::AnalyzerUp: edit.analyzer_deg = wrap_deg(edit.analyzer_deg + 5); change(); break;
+    case Action::AnalyzerDown: edit.analyzer_deg = wrap_deg(edit.analyzer_deg - 5); change(); break;
+    case Action::ToggleAnalyzer: edit.analyzer_in = !edit.analyzer_in; change(); break;
+    case Action::CrossPolars:
+      edit.analyzer_in = true;
+      edit.analyzer_deg = wrap_deg(edit.polarizer_deg + 90);
+      change();
+      break;
+    case Action::ToggleConoscopic: {
+      // Condenser top lens and Bertrand lens go in and out together, as `--set mode=` does.
+      const bool cono = edit.mode != ViewMode::Cono;
+      edit.mode = cono ? ViewMode::Cono : ViewMode::Ortho;
+      edit.bertrand_in = cono;
+      change();
+      break;
+    }
+    case Action::ToggleBertrand: edit.bertrand_in = !edit.bertrand_in; change(); break;
+    case Action::CycleCompensator:
+      edit.compensator = static_cast<Compensator>((static_cast<int>(edit.compensator) + 1) % 4);
+      change();
+      break;
+    case Action::WedgeIn:
+      edit.compensator = Compensator::QuartzWedge;
+      edit.compensator_position = std::min(1.0, edit.compensator_position + 0.05);
+      change();
+      break;
+    case Action::WedgeOut:
+      edit.compensator = Compensator::QuartzWedge;
+      edit.compensator_position = std::max(0.0, edit.compensator_position - 0.05);
+      change();
+      break;
+    case Action::Objective4: case Action::Objective10: case Action::Objective40:
+    case Action::Objective50: {
+      const auto& o = kObjectives[static_cast<int>(action) - static_cast<int>(Action::Objective4)];
+      edit.objective.magnification = o.magnification;
+      edit.objective.na = o.na;
+      change();
+      break;
+    }
+    case Action::ToggleIlluminant:
+      edit.illuminant = edit.illuminant == Illuminant::D65 ? Illuminant::A : Illuminant::D65;
+      change();
+      break;
+    case Action::ToggleSample: edit.sample_in = !edit.sample_in; change(); break;
+    case Action::ToggleHelp: help_open_ = !help_open_; break;
+    case Action::ExportField: export_field(field_path_); break;
+    case Action::ExportWindow: request_window_screenshot(window_path_); break;
+    case Action::SaveScene: save_scene(scene_path_); break;
+    case Action::LoadScene: load_scene(scene_path_); break;
+  }
+}
+
+}  // namespace pmsim::ui

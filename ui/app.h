@@ -1,0 +1,116 @@
+#pragma once
+// The interactive microscope: a thin client over pmsim_core. All state that defines the image is
+// one pmsim::Scene; every widget, shortcut, mouse drag and script line edits a copy of it and hands
+// the copy to commit(), which validates it, restarts the progressive renderer, or shows the error
+// banner and keeps the last good scene. The UI thread never renders: it uploads the renderer's
+// latest snapshot into a texture and draws.
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/microscope/scene.h"
+#include "core/render/progressive_renderer.h"
+#include "ui/layout.h"
+#include "ui/linear_texture.h"
+#include "ui/shortcuts.h"
+
+namespace pmsim::ui {
+
+struct AppCounters {
+  std::uint64_t frames = 0;           // frames built
+  std::uint64_t uploads = 0;          // field texture uploads (new renderer snapshots)
+  std::uint64_t commits = 0;          // accepted scene changes
+  std::uint64_t rejected = 0;         // scene changes refused (error banner)
+  std::uint64_t failures = 0;         // errors shown in the banner (bad input, failed writes)
+  double frame_ms = 0.0;              // CPU time of the last frame() call
+  double fps = 0.0;                   // UI frames per second, smoothed (driver-measured)
+};
+
+class App {
+ public:
+  // Needs the GL context current (textures are made on the first frame).
+  explicit App(const Scene& scene = {}, int renderer_threads = 0);
+  ~App();
+  App(const App&) = delete;
+  App& operator=(const App&) = delete;
+
+  // One frame of the whole window, between ImGui::NewFrame() and ImGui::Render().
+  void frame();
+  void set_window_size(int width, int height);
+  void set_measured_fps(double fps) { counters_.fps = fps; }
+
+  // --- the one door for state changes -----------------------------------------------------
+  bool commit(const Scene& candidate);         // false: banner shown, last good scene kept
+  bool set(std::string_view assignment);       // "key=value" (scene keys), through commit()
+  void perform(Action action);                 // what a shortcut does
+  bool load_scene(const std::string& path);
+  bool save_scene(const std::string& path);
+  bool export_field(const std::string& path);  // .png (sRGB) or .exr/.tif (linear), scene in metadata
+  // Whole-window screenshots need the framebuffer after ImGui has drawn; the driver collects
+  // the request after rendering and hands the pixels back to write_window_pixels().
+  void request_window_screenshot(const std::string& path) { window_shot_ = path; }
+  std::optional<std::string> take_window_screenshot_request();
+  bool write_window_pixels(const std::string& path, int width, int height,
+                           const std::vector<std::uint8_t>& rgb8);
+
+  const Scene& scene() const { return scene_; }
+  const RenderImage& image() const { return image_; }
+  bool converged() const { return image_.converged && image_.generation == generation_; }
+  bool wait_rendered(double timeout_s) const;  // blocks (drivers/tests only, never in frame())
+  const std::string& error() const { return error_; }
+  void clear_error() { error_.clear(); }
+  const Layout& layout() const { return layout_; }
+  const AppCounters& counters() const { return counters_; }
+  bool help_open() const { return help_open_; }
+
+ private:
+  void pull_snapshot();
+  void draw_controls(Scene& edit, bool& changed);
+  void draw_microscope_tab(Scene& edit, bool& changed);
+  void draw_sample_tab(Scene& edit, bool& changed);
+  void draw_quality_tab(Scene& edit, bool& changed);
+  void draw_files_tab();
+  void draw_field(Scene& edit, bool& changed);
+  void draw_status();
+  void draw_chart();
+  void draw_teaching();
+  void draw_help();
+  void handle_shortcuts(Scene& edit, bool& changed);
+  void apply_action(Action action, Scene& edit, bool& changed);
+  void fail(const std::string& message);
+  void note(const std::string& message);
+
+  Scene scene_;                     // the last good scene: what the renderer is rendering
+  std::uint64_t generation_ = 0;    // renderer generation of scene_
+  std::unique_ptr<ProgressiveRenderer> renderer_;
+  RenderImage image_;
+  LinearTexture field_texture_;
+  Layout layout_;
+  int window_w_ = 1280, window_h_ = 800;
+  AppCounters counters_;
+
+  std::string error_;               // banner text; "" = no banner
+  std::string notice_;              // last success message (exports, saves)
+  bool help_open_ = false;
+  bool reticle_ = true;
+  bool dragging_ = false;
+  double drag_angle_deg_ = 0.0;
+  float probe_x_ = 0.5f, probe_y_ = 0.5f;  // cursor on the field, fractions from the top left
+  bool probe_hovered_ = false;
+  std::optional<std::string> window_shot_;
+  std::string scene_path_ = "pmsim-scene.json";
+  std::string field_path_ = "pmsim-field.png";
+  std::string window_path_ = "pmsim-window.png";
+
+  struct Teaching;                  // cursor probe, chart and figure text (teaching_panel.cpp)
+  std::unique_ptr<Teaching> teaching_;
+};
+
+// Wrap an angle into [0, 360).
+double wrap_deg(double angle_deg);
+
+}  // namespace pmsim::ui

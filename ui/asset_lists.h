@@ -1,0 +1,13 @@
+#pragma once
+// What the sample and file pickers offer: files found in the assets folder (environment variable
+// PMSIM_ASSETS, else the source tree's assets/).
+#include <string>
+#include <vector>
+
+namespace pmsim::ui {
+
+std::string asset_dir();
+// Stems of the files in assets/<subdir> ending in `extension`, sorted; empty if no such folder.
+std::vector<std::string> list_asset_stems(const std::string& subdir, const std::string& extension);
+
+}  // namespace pmsim::ui

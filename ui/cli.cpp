@@ -1,0 +1,164 @@
+#include "ui/cli.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/io/input_error.h"
+#include "core/io/scene_file.h"
+#include "ui/headless_driver.h"
+#include "ui/script.h"
+#include "ui/window_driver.h"
+
+namespace pmsim::ui {
+namespace {
+
+constexpr const char* kUsage = R"(pmsim - interactive polarizing microscope
+
+usage: pmsim [SCENE.json] [options]
+  --headless            draw the window off-screen (EGL surfaceless, else OSMesa), no display needed
+  --set key=value       change a scene key (repeatable; keys as in pmsim-render)
+  --frames N            run N frames (windowed: then quit; headless: before settling, default 3)
+  --script FILE         replay user actions (format: assets/ui/README.md)
+  --screenshot FILE     write the whole window as PNG at the end (headless: after convergence)
+  --no-settle           headless: do not wait for the image to converge before the screenshot
+  --timeout S           headless: give up waiting for convergence after S seconds (default 600)
+  --size WxH            window size (default 1280x800)
+  --threads N           renderer worker threads (default: all cores)
+  --report-fps          print the UI frame rate measured over the run
+)";
+
+struct Options {
+  std::string scene_file;
+  std::vector<std::string> sets;
+  bool headless = false;
+  int frames = -1;
+  std::string script, screenshot;
+  bool settle = true, report_fps = false;
+  double timeout_s = 600;
+  int width = 1280, height = 800, threads = 0;
+};
+
+[[noreturn]] void bad(const std::string& message) {
+  std::cerr << "pmsim: " << message << "\n" << kUsage;
+  std::exit(2);
+}
+
+int to_int(const std::string& flag, const std::string& v) {
+  try {
+    size_t used = 0;
+    const int n = std::stoi(v, &used);
+    if (used == v.size() && n >= 0) return n;
+  } catch (const std::exception&) {
+  }
+  bad(flag + " " + v + ": expected a non-negative integer");
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) bad(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (a == "--headless") o.headless = true;
+    else if (a == "--set") o.sets.push_back(value());
+    else if (a == "--frames") o.frames = to_int(a, value());
+    else if (a == "--script") o.script = value();
+    else if (a == "--screenshot") o.screenshot = value();
+    else if (a == "--no-settle") o.settle = false;
+    else if (a == "--report-fps") o.report_fps = true;
+    else if (a == "--threads") o.threads = to_int(a, value());
+    else if (a == "--timeout") o.timeout_s = to_int(a, value());
+    else if (a == "--size") {
+      const std::string v = value();
+      const auto x = v.find('x');
+      if (x == std::string::npos) bad("--size " + v + ": expected WxH");
+      o.width = to_int(a, v.substr(0, x));
+      o.height = to_int(a, v.substr(x + 1));
+      if (o.width < 320 || o.height < 240) bad("--size " + v + ": at least 320x240");
+    } else if (!a.empty() && a[0] == '-') bad("unknown option " + a);
+    else if (o.scene_file.empty()) o.scene_file = a;
+    else bad("more than one scene file: " + a);
+  }
+  if (o.headless && o.screenshot.empty() && o.script.empty() && !o.report_fps)
+    bad("--headless needs --screenshot FILE.png, --script FILE or --report-fps");
+  return o;
+}
+
+void report(const UiDriver& d) {
+  const FrameTimes& t = d.frame_times();
+  std::printf("ui_fps=%.1f frames=%zu mean_ms=%.2f p50_ms=%.2f p95_ms=%.2f size=%dx%d gl=%s\n",
+              t.fps(), t.ms.size(), t.mean_ms(), t.percentile_ms(0.5), t.percentile_ms(0.95),
+              d.width(), d.height(), d.gl_name());
+}
+
+}  // namespace
+
+int pmsim_main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+
+  // All input is checked before any window opens: bad input is exit 2 with nothing written.
+  Scene scene;
+  std::vector<ScriptCommand> script;
+  try {
+    if (!o.scene_file.empty()) {
+      std::vector<std::string> warnings;
+      scene = load_scene_file(o.scene_file, &warnings);
+      for (const auto& w : warnings) std::cerr << "pmsim: warning: " << w << "\n";
+    }
+    for (const auto& s : o.sets) apply_setting(scene, s);
+    validate_scene(scene, o.scene_file);
+    if (!o.script.empty()) script = load_script(o.script);
+  } catch (const InputError& e) {
+    std::cerr << "pmsim: " << e.what() << "\n";
+    return 2;
+  }
+
+  std::string log;
+  std::unique_ptr<UiDriver> driver;
+  if (o.headless)
+    driver = HeadlessDriver::create(scene, o.width, o.height, log, o.threads);
+  else
+    driver = WindowDriver::create(scene, o.width, o.height, log, o.threads);
+  if (!driver) {
+    std::cerr << "pmsim: no usable OpenGL:\n" << log;
+    if (!o.headless) std::cerr << "pmsim: without a display, try: pmsim --headless --screenshot out.png\n";
+    return 1;
+  }
+  if (!log.empty()) std::cerr << log;
+
+  int status = 0;
+  if (!script.empty()) {
+    const ScriptResult r = run_script(*driver, script, o.script);
+    if (!r.ok) {
+      std::cerr << "pmsim: " << r.error << "\n";
+      status = 2;
+    }
+  }
+  if (o.headless) {
+    for (int i = 0; i < (o.frames >= 0 ? o.frames : 3); ++i) driver->frame();
+    if (!o.screenshot.empty() && o.settle && !settle(*driver, o.timeout_s))
+      std::cerr << "pmsim: warning: the image had not converged after " << o.timeout_s << " s\n";
+  } else {
+    for (int n = 0; o.frames < 0 || n < o.frames; ++n)
+      if (!driver->frame()) break;
+  }
+  if (!o.screenshot.empty()) {
+    driver->app().request_window_screenshot(o.screenshot);
+    const auto failures = driver->app().counters().failures;
+    driver->frame();
+    if (driver->app().counters().failures != failures) status = 2;
+  }
+  if (o.report_fps) report(*driver);
+  return status;
+}
+
+}  // namespace pmsim::ui

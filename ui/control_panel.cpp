@@ -1,0 +1,307 @@
+// The left panel: every microscope control, each editing one scene key of `edit`.
+#include <cmath>
+#include <cstring>
+
+#include <imgui.h>
+
+#include "core/crystal/crystal.h"
+#include "ui/app.h"
+#include "ui/asset_lists.h"
+
+namespace pmsim::ui {
+namespace {
+
+bool slider_deg(const char* label, double& value_deg, double min_deg = 0, double max_deg = 360) {
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value_deg, &min_deg, &max_deg,
+                             "%.1f deg");
+}
+
+bool slider_double(const char* label, double& value, double min, double max, const char* fmt,
+                   ImGuiSliderFlags flags = 0) {
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, fmt, flags);
+}
+
+bool input_text(const char* label, std::string& text) {
+  char buffer[1024];
+  std::strncpy(buffer, text.c_str(), sizeof buffer - 1);
+  buffer[sizeof buffer - 1] = '\0';
+  const bool entered =
+      ImGui::InputText(label, buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue);
+  text = buffer;
+  return entered;
+}
+
+template <typename E>
+bool combo_enum(const char* label, E& value, std::initializer_list<const char*> names) {
+  int i = static_cast<int>(value);
+  std::string items;
+  for (const char* n : names) items += std::string(n) + '\0';
+  if (!ImGui::Combo(label, &i, items.c_str())) return false;
+  value = static_cast<E>(i);
+  return true;
+}
+
+bool vec3_input(const char* label, std::array<double, 3>& v) {
+  return ImGui::InputScalarN(label, ImGuiDataType_Double, v.data(), 3, nullptr, nullptr, "%.3f",
+                             ImGuiInputTextFlags_EnterReturnsTrue);
+}
+
+constexpr struct { const char* name; double magnification, na; } kObjectiveChoices[] = {
+    {"4x / 0.10", 4, 0.10}, {"10x / 0.25", 10, 0.25}, {"40x / 0.65", 40, 0.65},
+    {"50x / 0.85", 50, 0.85}};
+
+bool is_biaxial(const Scene& s) {
+  if (s.sample.crystal) return !s.sample.crystal->uniaxial;
+  try {
+    return find_mineral(s.sample.mineral).symmetry() == CrystalSymmetry::Biaxial;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+void App::draw_controls(Scene& edit, bool& changed) {
+  const Layout& l = layout_;
+  ImGui::SetNextWindowPos(ImVec2(l.controls.x, l.controls.y));
+  ImGui::SetNextWindowSize(ImVec2(l.controls.w, l.controls.h));
+  ImGui::Begin("Microscope", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::PushItemWidth(l.controls.w * 0.55f);
+  if (ImGui::BeginTabBar("##tabs")) {
+    if (ImGui::BeginTabItem("Microscope")) {
+      draw_microscope_tab(edit, changed);
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Sample")) {
+      draw_sample_tab(edit, changed);
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Quality")) {
+      draw_quality_tab(edit, changed);
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Files")) {
+      draw_files_tab();
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void App::draw_microscope_tab(Scene& edit, bool& changed) {
+  // One click for the whole conoscopic set-up: condenser top lens and Bertrand lens together.
+  const bool cono = edit.mode == ViewMode::Cono;
+  ImGui::TextUnformatted("View");
+  if (ImGui::RadioButton("Orthoscopic", !cono) && cono) {
+    edit.mode = ViewMode::Ortho;
+    edit.bertrand_in = false;
+    changed = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::RadioButton("Conoscopic", cono) && !cono) {
+    edit.mode = ViewMode::Cono;
+    edit.bertrand_in = true;
+    changed = true;
+  }
+  changed |= ImGui::Checkbox("Bertrand lens in", &edit.bertrand_in);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Stage and polars");
+  changed |= slider_deg("Stage", edit.stage_deg);
+  changed |= slider_deg("Polarizer", edit.polarizer_deg);
+  changed |= ImGui::Checkbox("Analyzer in", &edit.analyzer_in);
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Cross polars")) {
+    edit.analyzer_in = true;
+    edit.analyzer_deg = wrap_deg(edit.polarizer_deg + 90);
+    changed = true;
+  }
+  changed |= slider_deg("Analyzer", edit.analyzer_deg);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Accessory slot (slow direction NE-SW)");
+  changed |= combo_enum("Compensator", edit.compensator,
+                        {"none", "gypsum (550 nm)", "mica (147 nm)", "quartz wedge"});
+  if (edit.compensator == Compensator::QuartzWedge)
+    changed |= slider_double("Wedge pushed in", edit.compensator_position, 0.0, 1.0, "%.2f");
+
+  ImGui::Separator();
+  int objective = -1;
+  for (int i = 0; i < 4; ++i)
+    if (std::abs(edit.objective.magnification - kObjectiveChoices[i].magnification) < 1e-9 &&
+        std::abs(edit.objective.na - kObjectiveChoices[i].na) < 1e-9)
+      objective = i;
+  if (ImGui::BeginCombo("Objective", objective >= 0 ? kObjectiveChoices[objective].name : "custom")) {
+    for (int i = 0; i < 4; ++i)
+      if (ImGui::Selectable(kObjectiveChoices[i].name, i == objective)) {
+        edit.objective.magnification = kObjectiveChoices[i].magnification;
+        edit.objective.na = kObjectiveChoices[i].na;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  changed |= slider_double("Condenser NA", edit.condenser.na, 0.05, 1.3, "%.2f");
+  changed |= combo_enum("Illuminant", edit.illuminant, {"D65 (daylight)", "A (tungsten)"});
+  ImGui::Separator();
+  ImGui::Checkbox("Eyepiece crosshair", &reticle_);
+}
+
+void App::draw_sample_tab(Scene& edit, bool& changed) {
+  SampleSettings& s = edit.sample;
+  bool present = edit.sample_in;
+  if (ImGui::Checkbox("Sample on the stage", &present)) {
+    edit.sample_in = present;
+    changed = true;
+  }
+  changed |= combo_enum("Type", s.type, {"plate", "wedge", "thin section"});
+
+  if (s.type == SampleType::Section) {
+    static std::vector<std::string> sections = list_asset_stems("sections", ".json");
+    if (ImGui::BeginCombo("Section", s.section.c_str())) {
+      for (const auto& name : sections)
+        if (ImGui::Selectable(name.c_str(), name == s.section)) {
+          s.section = name;
+          changed = true;
+        }
+      ImGui::EndCombo();
+    }
+    changed |= slider_double("Thickness", s.thickness_um, 1.0, 100.0, "%.1f um");
+    return;
+  }
+
+  bool custom = s.crystal.has_value();
+  if (!custom) {
+    static const std::vector<std::string> minerals = [] {
+      try {
+        return mineral_names();
+      } catch (const std::exception&) {
+        return std::vector<std::string>{};
+      }
+    }();
+    if (ImGui::BeginCombo("Mineral", s.mineral.c_str())) {
+      for (const auto& name : minerals)
+        if (ImGui::Selectable(name.c_str(), name == s.mineral)) {
+          s.mineral = name;
+          changed = true;
+        }
+      ImGui::EndCombo();
+    }
+  }
+  if (ImGui::Checkbox("Custom crystal by indices", &custom)) {
+    if (custom) s.crystal = CrystalIndices{};
+    else s.crystal.reset();
+    changed = true;
+  }
+  if (s.crystal) {
+    CrystalIndices& c = *s.crystal;
+    int kind = c.uniaxial ? 0 : 1;
+    if (ImGui::RadioButton("uniaxial", &kind, 0) | ImGui::RadioButton("biaxial", &kind, 1)) {
+      c.uniaxial = kind == 0;
+      changed = true;
+    }
+    const ImGuiInputTextFlags enter = ImGuiInputTextFlags_EnterReturnsTrue;
+    if (c.uniaxial) {
+      changed |= ImGui::InputDouble("n omega (no)", &c.no, 0.001, 0.01, "%.4f", enter);
+      changed |= ImGui::InputDouble("n epsilon (ne)", &c.ne, 0.001, 0.01, "%.4f", enter);
+    } else {
+      changed |= ImGui::InputDouble("n alpha", &c.nalpha, 0.001, 0.01, "%.4f", enter);
+      changed |= ImGui::InputDouble("n beta", &c.nbeta, 0.001, 0.01, "%.4f", enter);
+      changed |= ImGui::InputDouble("n gamma", &c.ngamma, 0.001, 0.01, "%.4f", enter);
+    }
+  }
+
+  const double max_um = s.type == SampleType::Wedge ? 500.0 : 200.0;
+  changed |= slider_double("Thickness", s.thickness_um, 0.5, max_um, "%.1f um",
+                           ImGuiSliderFlags_Logarithmic);
+  ImGui::TextDisabled(s.type == SampleType::Wedge ? "(wedge: thickness at the right edge)" : " ");
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Cut (crystal axes at stage 0 deg, lab x east, z up)");
+  if (!is_biaxial(edit)) {
+    if (ImGui::SmallButton("perp. c (basal)")) s.optic_axis = {0, 0, 1}, changed = true;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("parallel c")) s.optic_axis = {1, 0, 0}, changed = true;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("c at 30 deg")) s.optic_axis = {0.5, 0, 0.8660254}, changed = true;
+    changed |= vec3_input("Optic axis", s.optic_axis);
+  } else {
+    if (ImGui::SmallButton("Bxa figure")) s.x_axis = {1, 0, 0}, s.z_axis = {0, 0, 1}, changed = true;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("optic normal")) s.x_axis = {1, 0, 0}, s.z_axis = {0, 1, 0}, changed = true;
+    changed |= vec3_input("X (n alpha)", s.x_axis);
+    changed |= vec3_input("Z (n gamma)", s.z_axis);
+  }
+}
+
+void App::draw_quality_tab(Scene& edit, bool& changed) {
+  RenderSettings& r = edit.render;
+  OpticsSettings& o = edit.optics;
+  changed |= combo_enum("Lens model", o.lens_model, {"auto (cheapest within tolerance)",
+                                                     "ideal", "physical (SML)"});
+  changed |= ImGui::SliderInt("Lens depth dT", &o.lens_depth, 0, 4);
+  changed |= ImGui::Checkbox("Schlick Fresnel", &o.schlick);
+  ImGui::Separator();
+  changed |= ImGui::SliderInt("Wavelengths", &r.wavelengths, 0, 128, r.wavelengths ? "%d" : "auto");
+  changed |= ImGui::SliderInt("Samples/pixel", &r.spp, 0, 64, r.spp ? "%d" : "auto");
+  changed |= slider_double("Tolerance", r.tolerance_de2000, 0.1, 5.0, "%.2f dE00");
+  static const int kSizes[] = {128, 256, 384, 512, 768};
+  if (ImGui::BeginCombo("Image size", (std::to_string(r.width) + " x " + std::to_string(r.height)).c_str())) {
+    for (int s : kSizes)
+      if (ImGui::Selectable((std::to_string(s) + " x " + std::to_string(s)).c_str(), s == r.width)) {
+        r.width = r.height = s;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  bool mono = r.single_wavelength_nm > 0;
+  if (ImGui::Checkbox("Monochromatic", &mono)) {
+    r.single_wavelength_nm = mono ? 589.0 : 0.0;
+    changed = true;
+  }
+  if (mono) changed |= slider_double("Wavelength", r.single_wavelength_nm, 380, 780, "%.0f nm");
+
+  ImGui::Separator();
+  const RenderImage& im = image_;
+  ImGui::Text("Render time   %.0f ms", im.time_ms);
+  ImGui::Text("Samples/pixel %.1f (%d wavelengths, %d passes)", im.samples_per_pixel,
+              im.wavelengths, im.passes);
+  ImGui::Text("Error         %.2f dE00 %s", im.error_estimate, im.converged ? "(converged)" : "");
+  ImGui::Text("UI            %.1f fps, frame build %.1f ms", counters_.fps, counters_.frame_ms);
+  if (!im.model_report.empty()) {
+    ImGui::TextUnformatted("Models chosen:");
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextUnformatted(im.model_report.c_str());
+    ImGui::PopTextWrapPos();
+  }
+}
+
+void App::draw_files_tab() {
+  ImGui::TextUnformatted("Scene file");
+  bool load = input_text("##scene", scene_path_);
+  load |= ImGui::Button("Load");
+  ImGui::SameLine();
+  if (ImGui::Button("Save")) save_scene(scene_path_);
+  if (load) load_scene(scene_path_);
+  static const std::vector<std::string> scenes = list_asset_stems("scenes", ".json");
+  ImGui::TextUnformatted("Example scenes (assets/scenes)");
+  ImGui::BeginChild("##scenes", ImVec2(0, 150), true);
+  for (const auto& name : scenes)
+    if (ImGui::Selectable(name.c_str()))
+      load_scene(asset_dir() + "/scenes/" + name + ".json");
+  ImGui::EndChild();
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Export the field (.png sRGB, .exr linear)");
+  input_text("##field", field_path_);
+  if (ImGui::Button("Export field")) export_field(field_path_);
+  ImGui::TextUnformatted("Screenshot of the window (.png)");
+  input_text("##window", window_path_);
+  if (ImGui::Button("Save window")) request_window_screenshot(window_path_);
+  if (!notice_.empty()) ImGui::TextWrapped("%s", notice_.c_str());
+}
+
+}  // namespace pmsim::ui

@@ -1,0 +1,20 @@
+// ImGui's OpenGL3 backend compiled a second time, for OSMesa contexts. Its GL calls go through
+// libimgui's loader table (imgl3wProcs), which osmesa_imgui_gl_backend() fills from
+// OSMesaGetProcAddress; the loader is not initialised from libGL here (LOADER_CUSTOM). Function
+// names are prefixed so that they sit beside libimgui's own copy in one program.
+#include <backends/imgui_impl_opengl3_loader.h>
+
+#define IMGUI_IMPL_OPENGL_LOADER_CUSTOM
+#define ImGui_ImplOpenGL3_Init pmsim_osmesa_ImGui_ImplOpenGL3_Init
+#define ImGui_ImplOpenGL3_Shutdown pmsim_osmesa_ImGui_ImplOpenGL3_Shutdown
+#define ImGui_ImplOpenGL3_NewFrame pmsim_osmesa_ImGui_ImplOpenGL3_NewFrame
+#define ImGui_ImplOpenGL3_RenderDrawData pmsim_osmesa_ImGui_ImplOpenGL3_RenderDrawData
+#define ImGui_ImplOpenGL3_CreateFontsTexture pmsim_osmesa_ImGui_ImplOpenGL3_CreateFontsTexture
+#define ImGui_ImplOpenGL3_DestroyFontsTexture pmsim_osmesa_ImGui_ImplOpenGL3_DestroyFontsTexture
+#define ImGui_ImplOpenGL3_CreateDeviceObjects pmsim_osmesa_ImGui_ImplOpenGL3_CreateDeviceObjects
+#define ImGui_ImplOpenGL3_DestroyDeviceObjects pmsim_osmesa_ImGui_ImplOpenGL3_DestroyDeviceObjects
+#define ImGui_ImplOpenGL3_Data pmsim_osmesa_ImGui_ImplOpenGL3_Data
+#define ImGui_ImplOpenGL3_GetBackendData pmsim_osmesa_ImGui_ImplOpenGL3_GetBackendData
+#define ImGui_ImplOpenGL3_SetupRenderState pmsim_osmesa_ImGui_ImplOpenGL3_SetupRenderState
+
+#include PMSIM_IMGUI_OPENGL3_SOURCE

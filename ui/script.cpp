@@ -1,0 +1,218 @@
+#include "ui/script.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/io/input_error.h"
+#include "ui/shortcuts.h"
+
+namespace pmsim::ui {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Arity {
+  int min, max;
+};
+const std::map<std::string, Arity>& verbs() {
+  static const std::map<std::string, Arity> table = {
+      {"set", {1, 1}},        {"key", {1, 1}},        {"move", {2, 2}},
+      {"click", {2, 2}},      {"drag", {4, 5}},       {"turn-stage", {1, 2}},
+      {"probe", {2, 2}},      {"type", {1, 1}},       {"wait", {1, 2}},
+      {"screenshot", {1, 1}}, {"export", {1, 1}},     {"save", {1, 1}},
+      {"load", {1, 1}},       {"expect-error", {0, 0}}};
+  return table;
+}
+
+double number(const ScriptCommand& c, size_t i, const std::string& file) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(c.args.at(i), &used);
+    if (used != c.args[i].size() || !std::isfinite(v)) throw std::invalid_argument("");
+    return v;
+  } catch (const std::exception&) {
+    throw InputError(file, "line " + std::to_string(c.line), c.args.at(i), "expected a number");
+  }
+}
+
+}  // namespace
+
+std::vector<ScriptCommand> parse_script(const std::string& text, const std::string& file) {
+  std::vector<ScriptCommand> commands;
+  std::istringstream in(text);
+  std::string line;
+  int number_of_line = 0;
+  while (std::getline(in, line)) {
+    ++number_of_line;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    ScriptCommand c;
+    c.line = number_of_line;
+    if (!(words >> c.verb)) continue;
+    if (c.verb == "type") {  // the rest of the line, as typed
+      std::string rest;
+      std::getline(words, rest);
+      const auto first = rest.find_first_not_of(' ');
+      c.args.push_back(first == std::string::npos ? "" : rest.substr(first));
+    } else {
+      for (std::string w; words >> w;) c.args.push_back(w);
+    }
+    const auto v = verbs().find(c.verb);
+    const std::string where = "line " + std::to_string(c.line);
+    if (v == verbs().end()) throw InputError(file, where, c.verb, "unknown script command");
+    const int n = static_cast<int>(c.args.size());
+    if (n < v->second.min || n > v->second.max)
+      throw InputError(file, where, line, "wrong number of arguments for '" + c.verb + "'");
+    if (c.verb == "key") {
+      int key;
+      bool shift, ctrl;
+      if (!parse_key_chord(c.args[0], key, shift, ctrl))
+        throw InputError(file, where, c.args[0], "unknown key (e.g. Left, shift+Right, ctrl+s, C)");
+    }
+    if (c.verb == "set" && c.args[0].find('=') == std::string::npos)
+      throw InputError(file, where, c.args[0], "expected key=value");
+    if (c.verb == "wait" && c.args[0] != "converged") number(c, 0, file);
+    if (c.verb == "move" || c.verb == "click" || c.verb == "drag" || c.verb == "turn-stage" ||
+        c.verb == "probe")
+      for (size_t i = 0; i < c.args.size(); ++i) number(c, i, file);
+    if (c.verb == "wait" && c.args.size() == 2) number(c, 1, file);
+    commands.push_back(std::move(c));
+  }
+  return commands;
+}
+
+std::vector<ScriptCommand> load_script(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path, "", "", "cannot open the script");
+  std::stringstream text;
+  text << f.rdbuf();
+  return parse_script(text.str(), path);
+}
+
+bool settle(UiDriver& driver, double timeout_s, int* frames) {
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    driver.frame();
+    if (frames) ++*frames;
+    if (driver.app().converged()) return true;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s)
+      return false;
+    driver.app().wait_rendered(0.05);  // let the workers have the cores between frames
+  }
+}
+
+ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& commands,
+                        const std::string& file) {
+  ScriptResult result;
+  App& app = driver.app();
+  auto step = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      driver.frame();
+      ++result.frames;
+    }
+  };
+  for (size_t i = 0; i < commands.size(); ++i) {
+    const ScriptCommand& c = commands[i];
+    const auto& a = c.args;
+    auto num = [&](size_t k) { return number(c, k, file); };
+    const auto failures_before = app.counters().failures;
+    if (c.verb == "set") {
+      app.set(a[0]);
+      step(1);
+    } else if (c.verb == "key") {
+      int key;
+      bool shift, ctrl;
+      parse_key_chord(a[0], key, shift, ctrl);
+      driver.inject_key(key, shift, ctrl);
+      step(2);  // down, then up
+    } else if (c.verb == "move") {
+      driver.inject_mouse(static_cast<float>(num(0)), static_cast<float>(num(1)), false);
+      step(1);
+    } else if (c.verb == "probe") {
+      const Rect& f = app.layout().field;
+      driver.inject_mouse(f.x + static_cast<float>(num(0)) * f.w,
+                          f.y + static_cast<float>(num(1)) * f.h, false);
+      step(1);
+    } else if (c.verb == "click") {
+      const auto x = static_cast<float>(num(0)), y = static_cast<float>(num(1));
+      driver.inject_mouse(x, y, false);
+      step(1);
+      driver.inject_mouse(x, y, true);
+      step(1);
+      driver.inject_mouse(x, y, false);
+      step(1);
+    } else if (c.verb == "drag" || c.verb == "turn-stage") {
+      std::vector<std::pair<float, float>> path;
+      if (c.verb == "drag") {
+        const int n = a.size() > 4 ? std::max(1, static_cast<int>(num(4))) : 10;
+        for (int k = 0; k <= n; ++k) {
+          const double t = static_cast<double>(k) / n;
+          path.emplace_back(static_cast<float>(num(0) + t * (num(2) - num(0))),
+                            static_cast<float>(num(1) + t * (num(3) - num(1))));
+        }
+      } else {
+        // An arc at 0.7 of the field radius, starting east; screen y grows downwards.
+        const Rect& f = app.layout().field;
+        const double r = 0.35 * f.w, sweep = num(0) * kPi / 180;
+        const int n = a.size() > 1 ? std::max(1, static_cast<int>(num(1))) : 12;
+        for (int k = 0; k <= n; ++k) {
+          const double angle = sweep * k / n;
+          path.emplace_back(static_cast<float>(f.cx() + r * std::cos(angle)),
+                            static_cast<float>(f.cy() - r * std::sin(angle)));
+        }
+      }
+      driver.inject_mouse(path.front().first, path.front().second, false);
+      step(1);
+      for (const auto& [x, y] : path) {
+        driver.inject_mouse(x, y, true);
+        step(1);
+      }
+      driver.inject_mouse(path.back().first, path.back().second, false);
+      step(1);
+    } else if (c.verb == "type") {
+      driver.inject_text(a[0]);
+      step(1);
+    } else if (c.verb == "wait") {
+      if (a[0] == "converged") {
+        int frames = 0;
+        if (!settle(driver, a.size() > 1 ? num(1) : 600.0, &frames)) {
+          result.ok = false;
+          result.error = file + ": line " + std::to_string(c.line) +
+                         ": the image did not converge in time";
+          return result;
+        }
+        result.frames += frames;
+      } else {
+        step(std::max(0, static_cast<int>(num(0))));
+      }
+    } else if (c.verb == "screenshot") {
+      app.request_window_screenshot(a[0]);
+      step(1);
+    } else if (c.verb == "export") {
+      app.export_field(a[0]);
+      step(1);
+    } else if (c.verb == "save") {
+      app.save_scene(a[0]);
+      step(1);
+    } else if (c.verb == "load") {
+      app.load_scene(a[0]);
+      step(1);
+    } else if (c.verb == "expect-error") {
+      continue;  // checked with the command before it
+    }
+    const bool failed = app.counters().failures != failures_before;
+    const bool expected = i + 1 < commands.size() && commands[i + 1].verb == "expect-error";
+    if (failed != expected) {
+      result.ok = false;
+      result.error = file + ": line " + std::to_string(c.line) + ": " +
+                     (failed ? app.error() : "expected an error, got none");
+      return result;
+    }
+  }
+  return result;
+}
+
+}  // namespace pmsim::ui

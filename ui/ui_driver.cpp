@@ -1,0 +1,144 @@
+#include "ui/ui_driver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <numeric>
+
+#include <imgui.h>
+
+#include "ui/gl_functions.h"
+
+namespace pmsim::ui {
+
+double FrameTimes::mean_ms() const {
+  return ms.empty() ? 0.0 : std::accumulate(ms.begin(), ms.end(), 0.0) / ms.size();
+}
+
+double FrameTimes::percentile_ms(double p) const {
+  if (ms.empty()) return 0.0;
+  std::vector<double> sorted = ms;
+  std::sort(sorted.begin(), sorted.end());
+  const size_t i = std::min(sorted.size() - 1, static_cast<size_t>(p * (sorted.size() - 1) + 0.5));
+  return sorted[i];
+}
+
+double FrameTimes::fps() const {
+  const double m = mean_ms();
+  return m > 0 ? 1000.0 / m : 0.0;
+}
+
+void setup_imgui_style() {
+  ImGui::StyleColorsDark();
+  ImGuiStyle& style = ImGui::GetStyle();
+  style.WindowRounding = 0;
+  style.FrameRounding = 2;
+  style.ItemSpacing = ImVec2(6, 5);
+  ImGuiIO& io = ImGui::GetIO();
+  const char* font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  std::error_code ec;
+  if (std::filesystem::exists(font, ec)) io.Fonts->AddFontFromFileTTF(font, 14.0f);
+  else io.Fonts->AddFontDefault();
+}
+
+bool UiDriver::init_imgui(const ImGuiGlBackend& backend, const Scene& scene, int renderer_threads,
+                          std::string& log) {
+  IMGUI_CHECKVERSION();
+  imgui_ = ImGui::CreateContext();
+  ImGui::SetCurrentContext(imgui_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // the layout is computed, never restored from disk
+  io.LogFilename = nullptr;
+  setup_imgui_style();
+  backend_ = backend;
+  if (!backend_.init || !backend_.init("#version 330 core")) {
+    log += "ImGui OpenGL3 backend failed to initialise\n";
+    return false;
+  }
+  app_ = std::make_unique<App>(scene, renderer_threads);
+  app_->set_window_size(width_, height_);
+  return true;
+}
+
+void UiDriver::shutdown_imgui() {
+  if (!imgui_) return;
+  ImGui::SetCurrentContext(imgui_);
+  app_.reset();  // its textures go while the GL context is still current
+  if (backend_.shutdown) backend_.shutdown();
+  ImGui::DestroyContext(imgui_);
+  imgui_ = nullptr;
+}
+
+UiDriver::~UiDriver() = default;
+
+void UiDriver::inject_mouse(float x, float y, bool left_down) {
+  mouse_injected_ = true;
+  mouse_x_ = x;
+  mouse_y_ = y;
+  mouse_down_ = left_down;
+}
+
+void UiDriver::release_mouse() { mouse_injected_ = false; }
+
+void UiDriver::inject_key(int glfw_key, bool shift, bool ctrl) {
+  keys_pending_.push_back(glfw_key);
+  mods_pending_shift_ = shift;
+  mods_pending_ctrl_ = ctrl;
+}
+
+void UiDriver::inject_text(const std::string& utf8) { text_pending_ += utf8; }
+
+void UiDriver::apply_injected_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  if (mouse_injected_) {
+    io.MousePos = ImVec2(mouse_x_, mouse_y_);
+    io.MouseDown[0] = mouse_down_;
+  }
+  // Keys pressed last frame are released now (a press is one frame down, as a quick tap).
+  for (int k : keys_down_) io.KeysDown[k] = false;
+  if (!keys_down_.empty()) io.KeyShift = io.KeyCtrl = false;
+  keys_down_.clear();
+  if (!keys_pending_.empty()) {
+    for (int k : keys_pending_) io.KeysDown[k] = true;
+    io.KeyShift = mods_pending_shift_;
+    io.KeyCtrl = mods_pending_ctrl_;
+    keys_down_.swap(keys_pending_);
+    keys_pending_.clear();
+  }
+  if (!text_pending_.empty()) {
+    io.AddInputCharactersUTF8(text_pending_.c_str());
+    text_pending_.clear();
+  }
+}
+
+bool UiDriver::frame() {
+  const auto t0 = std::chrono::steady_clock::now();
+  ImGui::SetCurrentContext(imgui_);
+  if (!begin_frame()) return false;
+  apply_injected_input();
+  ImGui::NewFrame();
+  app_->frame();
+  ImGui::Render();
+  bind_target();
+  GlFunctions& g = gl();
+  g.ClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+  g.Clear(GL_COLOR_BUFFER_BIT);
+  backend_.render(ImGui::GetDrawData());
+  if (auto path = app_->take_window_screenshot_request()) {
+    const WindowPixels px = read_pixels();
+    app_->write_window_pixels(*path, px.width, px.height, px.rgb);
+  }
+  end_frame();
+  if (times_.ms.size() >= 100000)  // bounded, so a long session's memory stays flat
+    times_.ms.erase(times_.ms.begin(), times_.ms.begin() + 50000);
+  times_.ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  // Smoothed over the last frames for the status line.
+  const size_t n = std::min<size_t>(times_.ms.size(), 30);
+  double sum = 0;
+  for (size_t i = times_.ms.size() - n; i < times_.ms.size(); ++i) sum += times_.ms[i];
+  app_->set_measured_fps(sum > 0 ? 1000.0 * n / sum : 0.0);
+  return true;
+}
+
+}  // namespace pmsim::ui
