@@ -367,3 +367,15 @@ TEST(WalkOff, CalciteRayDeviatesBySixDegreesAt45FromTheAxis) {
   EXPECT_NEAR(glm::length(m.walkoff2), 0.0, 1e-9);
   EXPECT_NEAR(rho * 180 / kPi, 6.2, 0.1);
 }
+
+TEST(PhaseConvention, SlowWaveCarriesTheLargerPhase) {
+  // Quartz is optically positive: with c along x the slow (e) wave vibrates along x. The header's
+  // convention e^{i(k·r − ωt)} gives the slow wave the phase +δ/2 and the fast one −δ/2, so
+  // arg(J_xx/J_yy) = 2πΓ/λ (mod 2π). Compensator addition/subtraction relies on this sign.
+  const Crystal q = Crystal::uniaxial_constant("q", 1.544, 1.553);
+  const PlateSpec p = plate_of(q, uniaxial_orientation({1, 0, 0}), 10.0);
+  const JonesMatrix J = plate_jones(p, {0, 0, 1}, 600.0);
+  const double expected = 2 * kPi * 0.009 * 10e3 / 600.0;  // 0.94 rad, below π so no wrap
+  EXPECT_NEAR(std::arg(J.xx / J.yy), expected, 1e-12);
+  EXPECT_NEAR(std::arg(J.xx * J.yy), 0.0, 1e-12);  // the common phase is removed
+}
