@@ -9,12 +9,14 @@
 #include <optional>
 #include <string>
 
+#include "core/spectrum/illuminant.h"
+
 namespace pmsim {
 
 enum class ViewMode { Ortho, Cono };                       // mode: ortho|cono
 enum class SampleType { Plate, Wedge, Section };           // sample.type: plate|wedge|section
 enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
-enum class IlluminantName { D65, A };                      // illuminant: D65|A
+// illuminant: D65|A is pmsim::Illuminant (core/spectrum/illuminant.h)
 enum class LensModel { Auto, Ideal, Physical };            // optics.lens_model: auto|ideal|physical
 
 struct CrystalIndices {          // sample.crystal: {"no":..,"ne":..} or {"nalpha":..,"nbeta":..,"ngamma":..}
@@ -67,7 +69,7 @@ struct Scene {
   bool analyzer_in = true;                     // analyzer: in|out
   double stage_deg = 0.0;                      // stage_deg
   bool bertrand_in = false;                    // bertrand: in|out
-  IlluminantName illuminant = IlluminantName::D65;  // illuminant
+  Illuminant illuminant = Illuminant::D65;       // illuminant
   ObjectiveSettings objective;
   CondenserSettings condenser;
   SampleSettings sample;

@@ -5,6 +5,7 @@
 // thread can call them every frame.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ class ProgressiveRenderer {
 
   // Renders a scene to convergence on the calling thread's TBB arena; what pmsim-render uses.
   static RenderImage render(const Scene& scene, int threads = 0);
+  // The same, calling `progress` with each pass's image (on the calling thread) — the CLI's
+  // progress bar.
+  static RenderImage render(const Scene& scene, int threads,
+                            const std::function<void(const RenderImage&)>& progress);
 
  private:
   struct Impl;

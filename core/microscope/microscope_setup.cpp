@@ -1,0 +1,278 @@
+#include "core/microscope/microscope_setup.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <tbb/parallel_for.h>
+
+#include "core/materials/medium.h"
+#include "core/microscope/sample_source.h"
+#include "core/microscope/scene_check.h"
+#include "core/microscope/optical_train.h"
+#include "core/microscope/view_geometry.h"
+
+namespace pmsim {
+
+namespace {
+
+glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+glm::dmat3 sample_orientation(const Crystal& c, const SampleSettings& s) {
+  if (c.symmetry() == CrystalSymmetry::Biaxial) return biaxial_orientation(vec(s.x_axis), vec(s.z_axis));
+  return uniaxial_orientation(vec(s.optic_axis));
+}
+
+// Points spread evenly over the disk of radius s_max in the sin θ plane (Vogel's spiral): equal
+// areas of the condenser aperture, which a condenser filling its aperture lights evenly.
+std::vector<glm::dvec3> cone_directions(int n, double s_max) {
+  std::vector<glm::dvec3> d;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double r = s_max * std::sqrt((i + 0.5) / n), a = i * golden;
+    d.push_back({r * std::cos(a), r * std::sin(a), std::sqrt(std::max(0.0, 1.0 - r * r))});
+  }
+  return d;
+}
+
+int samples_per_side(int spp) { return std::max(1, static_cast<int>(std::ceil(std::sqrt(spp)))); }
+
+struct RefBuilder {
+  std::vector<PixelRef> tmp;
+  void add(int unit, float w) {
+    for (PixelRef& r : tmp)
+      if (r.unit == unit) {
+        r.weight += w;
+        return;
+      }
+    tmp.push_back({unit, w});
+  }
+};
+
+}  // namespace
+
+PreparedPlate MicroscopeSetup::prepare(int domain, double wavelength_nm) const {
+  const OpticalDomain& d = domains[domain];
+  PlateSpec spec;
+  spec.crystal = d.crystal;
+  spec.crystal_to_lab = d.crystal_to_lab;
+  spec.thickness_um = d.thickness_um > 0 ? d.thickness_um : 1.0;
+  spec.n_outside = find_medium(scene.sample.medium).n(wavelength_nm);
+  spec.fresnel = true;
+  return prepare_plate(spec, wavelength_nm);
+}
+
+std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
+                                                   const std::atomic<bool>* cancel) {
+  check_scene(scene);
+  auto S = std::make_shared<MicroscopeSetup>();
+  S->scene = scene;
+  const int W = scene.render.width, H = scene.render.height;
+  const double stage_rad = scene.stage_deg * std::numbers::pi / 180.0;
+  const bool cono = scene.mode == ViewMode::Cono;
+  const SampleType type = scene.sample.type;
+
+  // Domains.
+  if (!scene.sample_in) {
+    S->domains.push_back({nullptr, glm::dmat3(1.0), scene.sample.thickness_um, "empty stage"});
+  } else if (type == SampleType::Section) {
+    S->section = load_section(scene.sample.section);
+    for (int d = 0; d < S->section->domain_count(); ++d) {
+      const SectionGrain& g = S->section->grain_of_domain(d);
+      S->domains.push_back({g.crystal, rotate_stage(S->section->orientation_of_domain(d), stage_rad),
+                            scene.sample.thickness_um, g.mineral});
+    }
+  } else {
+    const Crystal* c;
+    if (scene.sample.crystal) {
+      S->custom_crystal = std::make_shared<Crystal>(crystal_from_indices(*scene.sample.crystal));
+      c = S->custom_crystal.get();
+    } else {
+      c = &find_mineral(scene.sample.mineral);
+    }
+    S->domains.push_back({c, rotate_stage(sample_orientation(*c, scene.sample), stage_rad),
+                          scene.sample.thickness_um, scene.sample.crystal ? "custom crystal" : c->name()});
+  }
+  S->compensator = make_compensator(scene.compensator, scene.compensator_position);
+
+  // Which domain a sample-frame point shows.
+  auto domain_at_sample = [&](const glm::dvec2& p) -> int {
+    if (!scene.sample_in || type != SampleType::Section) return 0;
+    return S->section->domain_at(p);
+  };
+  const bool is_wedge = scene.sample_in && type == SampleType::Wedge;
+
+  const int spp_side = samples_per_side(scene.render.spp > 0 ? scene.render.spp
+                                        : (scene.sample_in && type != SampleType::Plate ? 4 : 1));
+  S->pixel_offset.assign(static_cast<std::size_t>(W) * H + 1, 0);
+
+  // Units in parallel light (or cone-integrated), keyed by domain and wedge step.
+  std::map<std::pair<int, int>, int> unit_of;
+  const int wedge_steps = cono ? 256 : 2 * std::max(W, H);
+  auto unit_for = [&](int domain, int step, bool cone) {
+    auto key = std::make_pair(domain, step);
+    auto it = unit_of.find(key);
+    if (it != unit_of.end()) return it->second;
+    EvalUnit u;
+    u.domain = domain;
+    u.cone = cone;
+    u.thickness_um = step < 0 ? S->domains[domain].thickness_um
+                              : scene.sample.thickness_um * step / (wedge_steps - 1.0);
+    S->units.push_back(u);
+    return unit_of[key] = static_cast<int>(S->units.size()) - 1;
+  };
+  // Refs of a field point seen in parallel (or cone) light.
+  auto add_field_point = [&](RefBuilder& rb, const glm::dvec2& f, float w, bool cone) {
+    const glm::dvec2 p = sample_from_field(f, scene.stage_deg);
+    const int dom = domain_at_sample(p);
+    if (is_wedge) {
+      const double pos = wedge_thickness_um(scene, p) / scene.sample.thickness_um * (wedge_steps - 1);
+      const int i0 = std::min(static_cast<int>(pos), wedge_steps - 2);
+      const float frac = static_cast<float>(pos - i0);
+      rb.add(unit_for(dom, i0, cone), w * (1 - frac));
+      rb.add(unit_for(dom, i0 + 1, cone), w * frac);
+    } else {
+      rb.add(unit_for(dom, -1, cone), w);
+    }
+  };
+
+  std::ostringstream report;
+  if (cono && scene.bertrand_in) {
+    // The back focal plane: one unit per lit pixel, the domain under the field centre.
+    const glm::dvec2 centre = sample_from_field({0.0, 0.0}, scene.stage_deg);
+    const int dom = domain_at_sample(centre);
+    const double d = is_wedge ? wedge_thickness_um(scene, centre) : S->domains[dom].thickness_um;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * W + x;
+        S->pixel_offset[i] = static_cast<int>(S->refs.size());
+        glm::dvec3 k;
+        if (!bfp_direction(scene, field_from_pixel(W, H, x + 0.5, y + 0.5), k)) continue;
+        EvalUnit u;
+        u.domain = dom;
+        u.thickness_um = d;
+        u.k_air = k;
+        S->units.push_back(u);
+        S->refs.push_back({static_cast<int>(S->units.size()) - 1, 1.0f});
+      }
+    S->spatial_samples = 1;
+    report << "view: conoscopic figure, one evaluation per pixel (" << S->units.size() << ")";
+  } else if (!cono && scene.bertrand_in) {
+    // Parallel light focuses to a small spot in the back focal plane: the whole field's light.
+    RefBuilder field;
+    const int n = 8;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        add_field_point(field, field_from_pixel(n, n, i + 0.5, j + 0.5), 1.0f / (n * n), false);
+    const double rho_spot = kParallelBeamSinTheta / scene.objective.na;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * W + x;
+        S->pixel_offset[i] = static_cast<int>(S->refs.size());
+        const glm::dvec2 f = field_from_pixel(W, H, x + 0.5, y + 0.5);
+        if (std::hypot(f.x, f.y) <= rho_spot)
+          S->refs.insert(S->refs.end(), field.tmp.begin(), field.tmp.end());
+      }
+    report << "view: back focal plane in parallel light (spot of sin θ = " << kParallelBeamSinTheta << ")";
+  } else {
+    const bool cone = cono;  // cono without Bertrand: the image plane lit by the whole cone
+    if (cone) {
+      const double s_max = std::min(scene.condenser.na, scene.objective.na);
+      S->cone_dirs = cone_directions(scene.render.spp > 0 ? std::max(1, scene.render.spp) : 64, s_max);
+    }
+    const int n = spp_side;
+    S->spatial_samples = n * n;
+    RefBuilder rb;
+    for (int y = 0; y < H; ++y) {
+      if (cancel && *cancel) return nullptr;
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * W + x;
+        S->pixel_offset[i] = static_cast<int>(S->refs.size());
+        rb.tmp.clear();
+        for (int sy = 0; sy < n; ++sy)
+          for (int sx = 0; sx < n; ++sx)
+            add_field_point(rb, field_from_pixel(W, H, x + (sx + 0.5) / n, y + (sy + 0.5) / n),
+                            1.0f / (n * n), cone);
+        S->refs.insert(S->refs.end(), rb.tmp.begin(), rb.tmp.end());
+      }
+    }
+    report << "view: " << (cone ? "image plane in the convergent cone (" + std::to_string(S->cone_dirs.size()) + " directions)"
+                                : std::string("orthoscopic, parallel light"))
+           << ", " << S->units.size() << " spectral evaluation" << (S->units.size() == 1 ? "" : "s")
+           << " for the field";
+  }
+  S->pixel_offset[static_cast<std::size_t>(W) * H] = static_cast<int>(S->refs.size());
+
+  // Plate model: modal unless the scene asks for the exact Jones matrix per wavelength or a
+  // crystal is optically active (the modal fit carries linear eigenmodes only).
+  bool active = false;
+  for (const OpticalDomain& d : S->domains)
+    if (d.crystal && d.crystal->optically_active()) active = true;
+  const std::string& strat = scene.render.strategy;
+  const bool single = scene.render.single_wavelength_nm > 0;
+  S->plate_model = (strat == "exact" || (strat == "auto" && active) || single) ? PlateModel::Exact
+                                                                                : PlateModel::Modal;
+  report << "; plate: "
+         << (S->plate_model == PlateModel::Exact
+                 ? (single ? "exact Jones matrix (single wavelength)"
+                           : active && strat == "auto" ? "exact Jones matrix per wavelength (optically active crystal)"
+                                                       : "exact Jones matrix per wavelength")
+                 : "modal fit (3 mode solutions per direction, band-averaged interference)");
+  report << "; condenser, objective, Bertrand lens: ideal (perfect imaging, polarization kept)";
+
+  if (S->plate_model == PlateModel::Modal) {
+    S->dirs_per_unit = S->cone_dirs.empty() ? 1 : static_cast<int>(S->cone_dirs.size());
+    const int D = S->dirs_per_unit;
+    S->terms.resize(S->units.size() * D);
+    const TrainState train = make_train(scene, S->compensator, 550.0);  // its directions only
+    // Anchors prepared once per domain.
+    std::vector<std::array<PreparedPlate, 3>> anchors(S->domains.size());
+    for (std::size_t d = 0; d < S->domains.size(); ++d)
+      if (S->domains[d].crystal)
+        for (int a = 0; a < 3; ++a) anchors[d][a] = S->prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+    std::atomic<bool> stop{false};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, S->units.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        if (stop || (cancel && *cancel)) {
+                          stop = true;
+                          return;
+                        }
+                        for (std::size_t u = r.begin(); u != r.end(); ++u) {
+                          const EvalUnit& unit = S->units[u];
+                          const OpticalDomain& dom = S->domains[unit.domain];
+                          for (int d = 0; d < S->dirs_of(unit); ++d) {
+                            if (!dom.crystal || unit.thickness_um <= 0.0) {
+                              S->terms[u * D + d] = identity_modal_terms(train);
+                              continue;
+                            }
+                            ModalFit fit;
+                            fit.fit(anchors[unit.domain].data(), S->dir(unit, d));
+                            S->terms[u * D + d] =
+                                make_modal_terms(fit, train, unit.thickness_um / dom.thickness_um);
+                          }
+                        }
+                      });
+    if (stop) return nullptr;
+  }
+  S->model_report = report.str();
+  return S;
+}
+
+int domain_at_image_point(const MicroscopeSetup& S, double x_frac, double y_frac) {
+  const Scene& sc = S.scene;
+  const glm::dvec2 f = field_from_pixel(sc.render.width, sc.render.height, x_frac * sc.render.width,
+                                        y_frac * sc.render.height);
+  if (sc.mode == ViewMode::Cono && sc.bertrand_in) {
+    glm::dvec3 k;
+    if (!bfp_direction(sc, f, k)) return -1;
+    const glm::dvec2 c = sample_from_field({0.0, 0.0}, sc.stage_deg);
+    return S.section ? S.section->domain_at(c) : 0;
+  }
+  const glm::dvec2 p = sample_from_field(f, sc.stage_deg);
+  return (S.section && sc.sample_in) ? S.section->domain_at(p) : 0;
+}
+
+}  // namespace pmsim

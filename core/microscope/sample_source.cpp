@@ -1,0 +1,61 @@
+#include "core/microscope/sample_source.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/io/input_error.h"
+#include "core/materials/medium.h"
+
+namespace pmsim {
+
+bool mineral_known(const std::string& name) {
+  try {
+    find_mineral(name);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::string known_minerals_list() {
+  std::string s;
+  for (const std::string& n : mineral_names()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+bool medium_known(const std::string& name) {
+  try {
+    find_medium(name);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::string asset_dir() {
+  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env) return env;
+  return PMSIM_ASSET_DIR;
+}
+
+std::string section_path(const std::string& name) {
+  namespace fs = std::filesystem;
+  if (name.empty()) return "";
+  std::error_code ec;
+  if (fs::is_regular_file(name, ec)) return name;
+  const fs::path dir = fs::path(asset_dir()) / "sections";
+  for (const fs::path& p : {dir / name, dir / (name + ".json")})
+    if (fs::is_regular_file(p, ec)) return p.string();
+  return "";
+}
+
+bool section_known(const std::string& name) { return !section_path(name).empty(); }
+
+const Crystal& scene_crystal(const Scene& scene, Crystal& storage) {
+  if (scene.sample.crystal) {
+    storage = crystal_from_indices(*scene.sample.crystal);
+    return storage;
+  }
+  return find_mineral(scene.sample.mineral);
+}
+
+}  // namespace pmsim

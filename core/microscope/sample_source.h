@@ -1,0 +1,26 @@
+#pragma once
+// Where the sample's data come from: mineral library, custom indices, thin-section files, the
+// mounting medium. Shared by validation (core/io) and the optical set-up, so that both agree on
+// what is a known name.
+#include <string>
+
+#include "core/crystal/crystal.h"
+#include "core/microscope/scene.h"
+
+namespace pmsim {
+
+bool mineral_known(const std::string& name);
+std::string known_minerals_list();  // "augite, biotite, ..." for error messages
+bool medium_known(const std::string& name);
+// A thin-section name ("granite") or path ("…/granite.json") that resolves to a readable file.
+bool section_known(const std::string& name);
+// The file a section name refers to: a path as given if it exists, else
+// <assets>/sections/<name>[.json]; <assets> is $PMSIM_ASSETS or the source tree's assets/.
+std::string section_path(const std::string& name);
+std::string asset_dir();
+
+// The crystal a plate or wedge scene shows: sample.crystal when set (owned by `storage`), else the
+// named mineral.
+const Crystal& scene_crystal(const Scene& scene, Crystal& storage);
+
+}  // namespace pmsim

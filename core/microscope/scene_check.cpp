@@ -1,0 +1,97 @@
+#include "core/microscope/scene_check.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/io/input_error.h"
+#include "core/microscope/sample_source.h"
+
+namespace pmsim {
+
+namespace {
+void require(bool ok, const std::string& file, const char* key, const std::string& value,
+             const std::string& why) {
+  if (!ok) throw InputError(file, key, value, why);
+}
+std::string num(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+}  // namespace
+
+bool render_strategy_known(const std::string& s) {
+  return s == "auto" || s == "modal" || s == "exact";
+}
+std::string render_strategy_list() { return "auto|modal|exact"; }
+
+void check_scene(const Scene& s, const std::string& file) {
+  auto finite = [&](double v, const char* key) {
+    require(std::isfinite(v), file, key, num(v), "not a finite number");
+  };
+  finite(s.polarizer_deg, "polarizer_deg");
+  finite(s.analyzer_deg, "analyzer_deg");
+  finite(s.stage_deg, "stage_deg");
+  finite(s.objective.magnification, "objective.magnification");
+  require(s.objective.magnification > 0 && s.objective.magnification <= 1000, file,
+          "objective.magnification", num(s.objective.magnification), "must be in (0, 1000]");
+  // A dry objective and condenser collect at most sin θ < 1 in air.
+  require(s.objective.na > 0 && s.objective.na < 1, file, "objective.na", num(s.objective.na),
+          "numerical aperture in air must be in (0, 1)");
+  require(s.condenser.na > 0 && s.condenser.na < 1, file, "condenser.na", num(s.condenser.na),
+          "numerical aperture in air must be in (0, 1)");
+  require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 &&
+              s.sample.thickness_um <= 1e5,
+          file, "sample.thickness_um", num(s.sample.thickness_um), "must be in (0, 100000] µm");
+  for (auto [v, key] : {std::pair{&s.sample.optic_axis, "sample.optic_axis"},
+                        std::pair{&s.sample.x_axis, "sample.x_axis"},
+                        std::pair{&s.sample.z_axis, "sample.z_axis"}}) {
+    const auto& a = *v;
+    const double len2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    require(std::isfinite(len2) && len2 > 1e-24, file, key,
+            "[" + num(a[0]) + "," + num(a[1]) + "," + num(a[2]) + "]",
+            "a direction cannot be the zero vector");
+  }
+  if (s.sample.crystal) {
+    const CrystalIndices& c = *s.sample.crystal;
+    const double idx[] = {c.uniaxial ? c.no : c.nalpha, c.uniaxial ? c.ne : c.nbeta,
+                          c.uniaxial ? c.ne : c.ngamma};
+    for (double n : idx)
+      require(std::isfinite(n) && n > 1.0 && n <= 5.0, file, "sample.crystal", num(n),
+              "refractive indices must be in (1, 5]");
+    if (!c.uniaxial)
+      require(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma, file, "sample.crystal", "",
+              "biaxial indices must satisfy nalpha ≤ nbeta ≤ ngamma");
+  } else if (s.sample_in && s.sample.type != SampleType::Section) {
+    require(mineral_known(s.sample.mineral), file, "sample.mineral", s.sample.mineral,
+            "unknown mineral (known: " + known_minerals_list() + ")");
+  }
+  if (s.sample_in && s.sample.type == SampleType::Section)
+    require(section_known(s.sample.section), file, "sample.section", s.sample.section,
+            "no such thin-section file in assets/sections");
+  require(medium_known(s.sample.medium), file, "sample.medium", s.sample.medium,
+          "unknown mounting medium");
+  require(std::isfinite(s.compensator_position) && s.compensator_position >= 0 &&
+              s.compensator_position <= 1,
+          file, "compensator_position", num(s.compensator_position), "must be in [0, 1]");
+  require(s.render.width > 0 && s.render.width <= 16384, file, "render.width",
+          num(s.render.width), "must be in 1…16384");
+  require(s.render.height > 0 && s.render.height <= 16384, file, "render.height",
+          num(s.render.height), "must be in 1…16384");
+  require(s.render.spp >= 0 && s.render.spp <= 1000000, file, "render.spp", num(s.render.spp),
+          "must be ≥ 0 (0: until converged)");
+  require(s.render.wavelengths >= 0 && s.render.wavelengths <= 4001, file, "render.wavelengths",
+          num(s.render.wavelengths), "must be in 0…4001 (0: until converged)");
+  require(s.render.single_wavelength_nm == 0 ||
+              (s.render.single_wavelength_nm >= 380 && s.render.single_wavelength_nm <= 780),
+          file, "render.single_wavelength_nm", num(s.render.single_wavelength_nm),
+          "must be 0 (white light) or within 380–780 nm");
+  require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file,
+          "render.tolerance", num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
+  require(render_strategy_known(s.render.strategy), file, "render.strategy", s.render.strategy,
+          "unknown strategy (" + render_strategy_list() + ")");
+  require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= 10, file, "optics.lens_depth",
+          num(s.optics.lens_depth), "must be in 0…10");
+}
+
+}  // namespace pmsim

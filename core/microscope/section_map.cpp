@@ -1,0 +1,139 @@
+#include "core/microscope/section_map.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/io/input_error.h"
+#include "core/microscope/sample_source.h"
+
+namespace pmsim {
+
+int SectionMap::domain_at(const glm::dvec2& p) const {
+  int best = 0;
+  double best_d = 1e300;
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const SectionGrain& g = grains[i];
+    const glm::dvec2 d = p - g.seed;
+    const double c = std::cos(g.elongation_rad), s = std::sin(g.elongation_rad);
+    const double along = (d.x * c + d.y * s) / g.elongation, across = -d.x * s + d.y * c;
+    const double dist = (along * along + across * across) / (g.weight * g.weight);
+    if (dist < best_d) {
+      best_d = dist;
+      best = static_cast<int>(i);
+    }
+  }
+  const SectionGrain& g = grains[best];
+  int lamella = 0;
+  if (g.twinned) {
+    const glm::dvec2 n{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
+    lamella = static_cast<int>(std::floor(glm::dot(p - g.seed, n) / g.twin_width)) & 1;
+  }
+  return 2 * best + lamella;
+}
+
+namespace {
+
+using nlohmann::json;
+
+// Rotation by π about unit axis u: R = 2uuᵀ − I.
+glm::dmat3 half_turn(const glm::dvec3& u) {
+  glm::dmat3 r(0.0);
+  for (int c = 0; c < 3; ++c)
+    for (int rr = 0; rr < 3; ++rr) r[c][rr] = 2.0 * u[c] * u[rr] - (c == rr ? 1.0 : 0.0);
+  return r;
+}
+
+SectionMap parse_section(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path, "", "", "cannot open the thin-section file");
+  json j;
+  try {
+    j = json::parse(f);
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
+  }
+  SectionMap m;
+  m.path = path;
+  m.name = j.value("name", path);
+  m.source = j.value("source", "");
+  if (j.contains("thickness_um")) m.thickness_um = j["thickness_um"].get<double>();
+  if (!j.contains("grains") || !j["grains"].is_array() || j["grains"].empty())
+    throw InputError(path, "grains", "", "a section needs a non-empty array of grains");
+  int i = 0;
+  for (const json& gj : j["grains"]) {
+    const std::string key = "grains[" + std::to_string(i++) + "]";
+    auto vec = [&](const char* k, int n) {
+      if (!gj.contains(k) || !gj[k].is_array() || static_cast<int>(gj[k].size()) != n)
+        throw InputError(path, key + "." + k, gj.contains(k) ? gj[k].dump() : "",
+                         "expected an array of " + std::to_string(n) + " numbers");
+      std::vector<double> v;
+      for (const json& x : gj[k]) {
+        if (!x.is_number() || !std::isfinite(x.get<double>()))
+          throw InputError(path, key + "." + k, gj[k].dump(), "not a finite number");
+        v.push_back(x.get<double>());
+      }
+      return v;
+    };
+    SectionGrain g;
+    g.mineral = gj.value("mineral", "");
+    if (!mineral_known(g.mineral))
+      throw InputError(path, key + ".mineral", g.mineral,
+                       "unknown mineral (known: " + known_minerals_list() + ")");
+    g.crystal = &find_mineral(g.mineral);
+    const auto s = vec("seed", 2);
+    g.seed = {s[0], s[1]};
+    g.elongation = gj.value("elongation", 1.0);
+    g.elongation_rad = glm::radians(gj.value("elongation_deg", 0.0));
+    g.weight = gj.value("weight", 1.0);
+    if (!(g.elongation > 0) || !(g.weight > 0))
+      throw InputError(path, key, gj.dump(), "elongation and weight must be > 0");
+    try {
+      if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
+        const auto x = vec("x_axis", 3), z = vec("z_axis", 3);
+        g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
+      } else {
+        const auto a = vec("optic_axis", 3);
+        g.orientation = uniaxial_orientation({a[0], a[1], a[2]});
+      }
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path, key, gj.dump(), e.what());
+    }
+    if (gj.contains("twin")) {
+      const json& t = gj["twin"];
+      g.twinned = true;
+      g.twin_trace_rad = glm::radians(t.value("trace_deg", 0.0));
+      g.twin_width = t.value("width", 0.05);
+      if (!(g.twin_width > 0)) throw InputError(path, key + ".twin.width", t.dump(), "must be > 0");
+      const glm::dvec3 axis{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad), 0.0};
+      g.twin_orientation = half_turn(axis) * g.orientation;
+    } else {
+      g.twin_orientation = g.orientation;
+    }
+    m.grains.push_back(std::move(g));
+  }
+  return m;
+}
+
+}  // namespace
+
+std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path) {
+  const std::string path = section_path(name_or_path);
+  if (path.empty())
+    throw InputError("", "sample.section", name_or_path, "no such thin-section file in assets/sections");
+  static std::mutex mu;
+  static std::map<std::string, std::shared_ptr<const SectionMap>> cache;
+  std::lock_guard<std::mutex> lock(mu);
+  auto it = cache.find(path);
+  if (it != cache.end()) return it->second;
+  auto m = std::make_shared<const SectionMap>(parse_section(path));
+  cache[path] = m;
+  return m;
+}
+
+}  // namespace pmsim

@@ -1,0 +1,53 @@
+#pragma once
+// A thin section as a map of grains (assets/sections/*.json). Each grain owns the points of the
+// field nearest to its seed under its own anisotropic metric (an elongated Voronoi cell, so that
+// plagioclase laths look like laths); a twinned grain alternates lamellae of two orientations
+// related by a 180° rotation about the twin axis (albite law: the normal of the (010) composition
+// plane, whose trace is the lamella direction). Field coordinates: x east, y north, the shorter
+// image side spans −1…1; seeds may lie outside so that a turned stage still shows grains.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
+
+#include "core/crystal/crystal.h"
+
+namespace pmsim {
+
+struct SectionGrain {
+  std::string mineral;
+  const Crystal* crystal = nullptr;
+  glm::dmat3 orientation{1.0};        // columns: crystal X, Y, Z in the sample frame
+  glm::dvec2 seed{0.0};
+  double elongation = 1.0;            // cell length / width
+  double elongation_rad = 0.0;        // direction of the long side
+  double weight = 1.0;                // larger: bigger cell
+  bool twinned = false;
+  double twin_trace_rad = 0.0;        // direction of the lamella traces
+  double twin_width = 0.05;           // lamella width (field units)
+  glm::dmat3 twin_orientation{1.0};   // orientation of the odd lamellae
+};
+
+class SectionMap {
+ public:
+  std::string name, source, path;
+  double thickness_um = 30.0;
+  std::vector<SectionGrain> grains;
+
+  // Optical domain under a sample-frame point: 2·grain + (1 for an odd twin lamella).
+  int domain_at(const glm::dvec2& p) const;
+  int domain_count() const { return 2 * static_cast<int>(grains.size()); }
+  const SectionGrain& grain_of_domain(int d) const { return grains[d / 2]; }
+  const glm::dmat3& orientation_of_domain(int d) const {
+    const SectionGrain& g = grains[d / 2];
+    return (d & 1) ? g.twin_orientation : g.orientation;
+  }
+};
+
+// Loads (once, cached by resolved path) a section file; throws InputError naming file, key and
+// value on bad content or an unknown mineral.
+std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path);
+
+}  // namespace pmsim

@@ -1,0 +1,44 @@
+#include "core/microscope/view_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace pmsim {
+
+glm::dvec2 field_from_pixel(int width, int height, double px, double py) {
+  const double half = 0.5 * std::min(width, height);
+  return {(px - 0.5 * width) / half, (0.5 * height - py) / half};
+}
+
+glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg) {
+  const double a = -stage_deg * std::numbers::pi / 180.0;
+  const double c = std::cos(a), s = std::sin(a);
+  return {c * f.x - s * f.y, s * f.x + c * f.y};
+}
+
+bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air) {
+  const double rho = std::hypot(f.x, f.y);
+  if (rho > 1.0) return false;
+  const double sin_t = rho * scene.objective.na;
+  if (sin_t > scene.condenser.na) return false;
+  const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t));
+  if (rho > 0) {
+    k_air = {sin_t * f.x / rho, sin_t * f.y / rho, cos_t};
+  } else {
+    k_air = {0.0, 0.0, 1.0};
+  }
+  return true;
+}
+
+double field_half_width(int width, int height) {
+  return static_cast<double>(width) / std::min(width, height);
+}
+
+double wedge_thickness_um(const Scene& scene, const glm::dvec2& p) {
+  const double W = field_half_width(scene.render.width, scene.render.height);
+  const double u = (p.x + W) / (2.0 * W);
+  return scene.sample.thickness_um * std::clamp(u, 0.0, 1.0);
+}
+
+}  // namespace pmsim

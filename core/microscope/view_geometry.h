@@ -1,0 +1,33 @@
+#pragma once
+// Where a pixel looks. Field coordinates: x east, y north, the shorter image side spans −1…1 (so
+// the conoscopic disk of radius 1 is inscribed in the image). The sample turns with the stage
+// (counter-clockwise as the observer sees it); the back focal plane does not.
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/microscope/scene.h"
+
+namespace pmsim {
+
+// Pixel position (px to the right, py down, both continuous: pixel centres at i + 0.5).
+glm::dvec2 field_from_pixel(int width, int height, double px, double py);
+// The same point in the sample frame, i.e. undoing the stage rotation.
+glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg);
+
+// Conoscopic (Bertrand lens in): the direction in air of the light that reaches back-focal-plane
+// point f: sin θ_air = |f|·objective.na, azimuth of f. False outside the disk or beyond the
+// condenser NA (unlit).
+bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air);
+
+// Half-width of the field in field units along x (≥ 1).
+double field_half_width(int width, int height);
+
+// Wedge: thickness at a sample-frame point, 0 at the left edge of the field (stage 0°) growing
+// linearly to thickness_um at the right edge, clamped.
+double wedge_thickness_um(const Scene& scene, const glm::dvec2& sample_point);
+
+// ortho + Bertrand in: light parallel to the axis comes to a focus in the back focal plane; the
+// spot radius (in sin θ) of the slightly convergent "parallel" beam of a stopped-down condenser.
+constexpr double kParallelBeamSinTheta = 0.02;
+
+}  // namespace pmsim

@@ -1,0 +1,23 @@
+#pragma once
+// From per-unit tristimulus values to the image: every pixel is the weighted sum of the units it
+// shows, converted to linear sRGB only here (the accumulators stay XYZ in double until then).
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/microscope/microscope_setup.h"
+#include "core/render/progressive_renderer.h"
+
+namespace pmsim {
+
+// monochromatic: unit values are relative intensities T; the image then holds R = G = B = T and
+// XYZ = T × the illuminant white.
+void develop_image(const MicroscopeSetup& setup, const std::vector<glm::dvec3>& units,
+                   bool monochromatic, RenderImage& out);
+
+// Mean CIEDE2000 between two XYZ images of the setup's size over its lit pixels (a regular subset
+// of at most ~65k of them), white = the scene illuminant with Y = 1.
+double mean_ciede2000(const MicroscopeSetup& setup, const std::vector<float>& xyz_a,
+                      const std::vector<float>& xyz_b);
+
+}  // namespace pmsim

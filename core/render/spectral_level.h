@@ -1,0 +1,36 @@
+#pragma once
+// One level of the spectral quadrature: the visible range 380–780 nm cut into n equal bands, each
+// evaluated at its centre. Each band carries the exact integral of the observer weights over it,
+// so that T ≡ 1 gives the reference white at any n (the exposure never depends on the sampling),
+// and the modal plate model averages the interference terms over the band (no aliasing).
+#include <array>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/crystal/plate.h"
+#include "core/microscope/microscope_setup.h"
+#include "core/microscope/optical_train.h"
+
+namespace pmsim {
+
+struct SpectralLevel {
+  int n = 0;
+  bool monochromatic = false;              // render.single_wavelength_nm: one line, weight 1
+  double band_nm = 0.0;
+  std::vector<double> nm;
+  std::vector<glm::dvec3> weight;          // W = ∫_band S·(x̄,ȳ,z̄) dλ / ∫ S·ȳ dλ
+  std::vector<glm::dvec3> moment;          // M = ∫_band w(λ)·(λ − λc) dλ (the weights' slope)
+  std::vector<std::array<double, 3>> anchor_w, anchor_dw;  // modal anchor weights at λc (and d/dλ)
+  std::vector<TrainState> train;
+  std::vector<std::vector<PreparedPlate>> prepared;  // [band][domain], exact plate model only
+};
+
+SpectralLevel make_spectral_level(const MicroscopeSetup& setup, int n);
+
+// Spectral transmittance of one unit at band i with the exact plate Jones matrix (band centre).
+double unit_transmission(const MicroscopeSetup& setup, const SpectralLevel& level, int unit, int band);
+// XYZ of one unit (Y = 1: the exposure reference); monochromatic: (T, T, T).
+glm::dvec3 evaluate_unit(const MicroscopeSetup& setup, const SpectralLevel& level, int unit);
+
+}  // namespace pmsim
