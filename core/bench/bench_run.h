@@ -1,0 +1,59 @@
+#pragma once
+// pmsim-bench: every bench scene rendered with every strategy, each image compared per pixel with
+// the scene's converged reference (CIEDE2000), plus the issue-5 targets and the lens-tracing
+// throughput, as a table, JSON rows and the frontier plot/markdown.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/bench/lens_throughput.h"
+
+namespace pmsim {
+
+struct BenchOptions {
+  bool quick = false;
+  int size = 0;                 // image side in pixels (0: 512, quick 96)
+  std::string cache_dir;        // reference cache ("" = none)
+  int threads = 0;              // 0: all cores
+  int throughput_rays = 0;      // 0: 2e6 (quick 2e5); < 0: skip
+};
+
+// One JSON row. The first eight keys are the contract of issue 5.
+struct BenchRow {
+  std::string scene, strategy;
+  int width = 0, height = 0;
+  double time_ms = 0.0, mean_de2000 = 0.0, p95_de2000 = 0.0, max_de2000 = 0.0;
+  int wavelengths = 0;
+  std::string code;             // "product" (the renderer) or "bench-side"
+  double renderer_estimate = -1.0;
+  std::string model_report;
+};
+
+struct SceneReferenceInfo {
+  std::string scene, description, cache_file;
+  double time_ms = 0.0;
+  bool from_cache = false;
+  double half_vs_full_mean_de2000 = 0.0;   // reference convergence check
+};
+
+struct BenchReport {
+  BenchOptions options;
+  std::vector<BenchRow> rows;
+  std::vector<SceneReferenceInfo> references;
+  std::vector<ThroughputResult> throughput;
+  std::vector<std::string> notes;
+  double total_s = 0.0;
+};
+
+BenchReport run_bench(const BenchOptions& options, std::ostream& log);
+
+nlohmann::json bench_report_json(const BenchReport& report);
+std::string bench_table(const BenchReport& report);
+// The target lines of issue 5 (met, or the distance to them), as text lines.
+std::vector<std::string> bench_targets(const BenchReport& report);
+// docs/bench/frontier.md contents (table, targets, recommended defaults).
+std::string frontier_markdown(const BenchReport& report, const std::string& plot_file);
+
+}  // namespace pmsim

@@ -1,0 +1,175 @@
+#include "core/bench/bench_strategy.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/bench/physical_lens_model.h"
+#include "core/io/scene_file.h"
+#include "core/microscope/microscope_setup.h"
+#include "core/microscope/optical_train.h"
+#include "core/render/image_develop.h"
+#include "core/render/progressive_renderer.h"
+#include "core/spectrum/cie.h"
+#include "core/spectrum/color.h"
+#include "core/spectrum/wavelength_sampling.h"
+
+namespace pmsim {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// splitmix64 (Steele, Lea, Flood 2014): a decorrelated stream per unit.
+std::uint64_t splitmix(std::uint64_t& s) {
+  std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+double uniform01(std::uint64_t& s) { return (splitmix(s) >> 11) * (1.0 / 9007199254740992.0); }
+
+// Exact transmission of one unit at one wavelength: plate prepared at λ, Jones matrix per direction.
+double exact_transmission(const MicroscopeSetup& S, const EvalUnit& unit, double nm) {
+  const TrainState train = make_train(S.scene, S.compensator, nm);
+  const OpticalDomain& dom = S.domains[unit.domain];
+  if (!dom.crystal || unit.thickness_um <= 0.0) return jones_transmission(train, JonesMatrix::identity());
+  PreparedPlate p = S.prepare(unit.domain, nm);
+  p.thickness_um = unit.thickness_um;
+  const int D = S.dirs_of(unit);
+  double t = 0.0;
+  for (int d = 0; d < D; ++d) t += jones_transmission(train, plate_jones(p, S.dir(unit, d)));
+  t /= D;
+  return std::isfinite(t) ? std::max(0.0, t) : 0.0;
+}
+
+glm::dvec3 bench_side_unit(const MicroscopeSetup& S, const BenchStrategy& st, std::size_t u) {
+  const EvalUnit& unit = S.units[u];
+  if (st.kind == StrategyKind::Rgb) {
+    // Channel wavelengths near the sRGB primaries' dominant wavelengths; T ≡ 1 gives RGB (1,1,1),
+    // i.e. the D65 white at Y = 1, the same exposure as the spectral strategies.
+    const glm::dvec3 rgb(exact_transmission(S, unit, 610.0), exact_transmission(S, unit, 550.0),
+                         exact_transmission(S, unit, 465.0));
+    return linear_srgb_to_xyz(rgb);
+  }
+  std::uint64_t seed = 0x5eedull * 1000003ull + u;
+  SampledWavelengths w;
+  if (st.kind == StrategyKind::Stratified) {
+    std::vector<double> r(st.wavelengths);
+    for (double& x : r) x = uniform01(seed);
+    w = stratified_wavelengths(st.wavelengths, r);
+  } else {
+    w = hero_wavelengths(st.wavelengths, uniform01(seed));
+  }
+  glm::dvec3 xyz(0.0);
+  for (int i = 0; i < w.size(); ++i)
+    xyz += observer_weight(S.scene.illuminant, w.nm[i]) * (w.weight_nm[i] * exact_transmission(S, unit, w.nm[i]));
+  return xyz;
+}
+
+StrategyResult run_bench_side(const Scene& scene, const BenchStrategy& st) {
+  StrategyResult r;
+  const auto t0 = Clock::now();
+  Scene sc = scene;
+  sc.render.strategy = "exact";  // no modal fit: the set-up only provides geometry
+  const auto S = build_setup(sc);
+  std::vector<glm::dvec3> units(S->units.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64), [&](const tbb::blocked_range<std::size_t>& b) {
+    for (std::size_t u = b.begin(); u != b.end(); ++u) units[u] = bench_side_unit(*S, st, u);
+  });
+  RenderImage img;
+  develop_image(*S, units, false, img);
+  r.time_ms = ms_since(t0);
+  r.xyz = std::move(img.xyz);
+  r.wavelengths = st.kind == StrategyKind::Rgb ? 3 : st.wavelengths;
+  r.model_report = "bench-side: exact Jones per sampled wavelength, renderer set-up and develop_image";
+  return r;
+}
+
+StrategyResult run_first_pass(const Scene& scene, int threads) {
+  ProgressiveRenderer renderer(threads);
+  RenderImage img;
+  const auto t0 = Clock::now();
+  renderer.restart(scene);
+  while (!renderer.snapshot(img)) std::this_thread::sleep_for(std::chrono::microseconds(100));
+  const double wall = ms_since(t0);
+  renderer.cancel();
+  StrategyResult r;
+  r.time_ms = std::max(wall, img.time_ms);
+  r.xyz = std::move(img.xyz);
+  r.wavelengths = img.wavelengths;
+  r.error_estimate = img.error_estimate;
+  r.model_report = img.model_report;
+  return r;
+}
+
+}  // namespace
+
+std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
+  std::vector<BenchStrategy> v;
+  using K = StrategyKind;
+  const auto product = [&](std::string name, std::vector<std::string> set) {
+    v.push_back({std::move(name), K::Product, std::move(set), 0});
+  };
+  if (bs.physical_lenses) {
+    // The lens-model axis: ideal vs physical, dT, Fresnel vs Schlick (all at converged spectra).
+    product("ideal-lenses", {"optics.lens_model=ideal"});
+    for (int dT : quick ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 5})
+      v.push_back({"sml-dT" + std::to_string(dT), K::PhysicalLens, {"optics.lens_depth=" + std::to_string(dT)}, 0});
+    v.push_back({"sml-dT3-schlick", K::PhysicalLens, {"optics.lens_depth=3", "optics.schlick=true"}, 0});
+    return v;
+  }
+  product("uniform-81", {"render.strategy=exact", "render.wavelengths=81"});
+  if (!quick) {
+    product("uniform-16", {"render.strategy=exact", "render.wavelengths=16"});
+    product("uniform-32", {"render.strategy=exact", "render.wavelengths=32"});
+  }
+  v.push_back({"rgb-3", K::Rgb, {}, 3});
+  for (int n : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16, 32})
+    v.push_back({"stratified-" + std::to_string(n), K::Stratified, {}, n});
+  for (int n : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
+    v.push_back({"hero-" + std::to_string(n), K::Hero, {}, n});
+  for (int n : quick ? std::vector<int>{8, 32} : std::vector<int>{4, 8, 16, 32, 64})
+    product("modal-" + std::to_string(n), {"render.strategy=modal", "render.wavelengths=" + std::to_string(n)});
+  product("auto", {"render.strategy=auto"});
+  v.push_back({"first-pass", K::FirstPass, {"render.strategy=auto"}, 0});
+  return v;
+}
+
+StrategyResult run_strategy(const Scene& scene, const BenchStrategy& st, int threads) {
+  Scene sc = scene;
+  for (const std::string& s : st.settings) apply_setting(sc, s);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  StrategyResult r;
+  switch (st.kind) {
+    case StrategyKind::Product: {
+      const auto t0 = Clock::now();
+      RenderImage img = ProgressiveRenderer::render(sc, threads);
+      r.time_ms = ms_since(t0);
+      r.xyz = std::move(img.xyz);
+      r.wavelengths = img.wavelengths;
+      r.error_estimate = img.error_estimate;
+      r.model_report = img.model_report;
+      break;
+    }
+    case StrategyKind::FirstPass:
+      r = run_first_pass(sc, threads);
+      break;
+    case StrategyKind::PhysicalLens:
+      arena.execute([&] { r = render_physical_lens_model(sc); });
+      break;
+    default:
+      arena.execute([&] { r = run_bench_side(sc, st); });
+  }
+  return r;
+}
+
+}  // namespace pmsim

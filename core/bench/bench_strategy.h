@@ -1,0 +1,46 @@
+#pragma once
+// The ways of rendering a bench scene that pmsim-bench compares. "Product" strategies call the
+// renderer itself (ProgressiveRenderer with scene settings); "bench-side" ones are spectral
+// sampling schemes the renderer does not offer (RGB, stratified and hero wavelengths per pixel),
+// evaluated here on the renderer's own set-up (build_setup: domains, units, pixel references) and
+// the crystal's exact Jones matrix, then developed with the renderer's develop_image, so that only
+// the choice of wavelengths differs.
+#include <string>
+#include <vector>
+
+#include "core/bench/bench_scenes.h"
+
+namespace pmsim {
+
+enum class StrategyKind {
+  Product,        // ProgressiveRenderer::render of the scene with `settings` applied
+  FirstPass,      // the first progressive pass of ProgressiveRenderer (interactive preview)
+  Rgb,            // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
+  Stratified,     // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
+  Hero,           // bench-side: hero wavelength + n−1 equally spaced companions, per unit
+  PhysicalLens,   // bench-side: objective as an SML lens (see physical_lens_model.h)
+};
+
+struct BenchStrategy {
+  std::string name;
+  StrategyKind kind = StrategyKind::Product;
+  std::vector<std::string> settings;  // "key=value" applied to the scene first
+  int wavelengths = 0;                // bench-side sample count
+  bool product() const { return kind == StrategyKind::Product || kind == StrategyKind::FirstPass; }
+};
+
+struct StrategyResult {
+  std::vector<float> xyz;        // width·height·3
+  double time_ms = 0.0;          // wall time of the whole render (set-up included)
+  int wavelengths = 0;           // spectral samples per unit (renderer: its band count)
+  double error_estimate = -1.0;  // the renderer's own estimate (product strategies)
+  std::string model_report;
+};
+
+// quick: fewer strategies. Strategies that do not apply to a scene are left out.
+std::vector<BenchStrategy> bench_strategies(const BenchScene& scene, bool quick);
+
+// threads: 0 = all cores. Throws InputError if a setting is rejected.
+StrategyResult run_strategy(const Scene& scene, const BenchStrategy& strategy, int threads);
+
+}  // namespace pmsim

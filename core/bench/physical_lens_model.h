@@ -1,0 +1,34 @@
+#pragma once
+// BENCH-SIDE physical-lens model of the conoscopic figure, until the renderer implements
+// optics.lens_model = physical (it currently reports "condenser, objective, Bertrand lens: ideal"):
+// the condenser and the objective are SML lenses (core/lens trace_lens: real glass, exact Fresnel
+// or Schlick, internal reflections up to optics.lens_depth = dT), the sample at their common focus.
+//
+// For every back-focal-plane pixel (a direction k through the sample, as in the ideal model):
+//  * the condenser ray that reaches the sample along k (found by tracing −k backward through the
+//    condenser, then forward along the reversed exit ray) gives the condenser's Jones matrix from
+//    the polarizer (lab x, y) to the transverse basis of k (depth-0 path);
+//  * the plate is the renderer's ModalFit (three exact mode solutions per pixel), its
+//    interference term averaged over each band in closed form;
+//  * the objective traced from the sample along k with two orthogonal input polarizations gives one
+//    Jones matrix per outgoing forward path: the depth-0 path lands on the pixel itself; every
+//    ghost path (2, 4, … internal reflections, up to dT) lands where its exit ray crosses the
+//    back-focal plane, mapped to the image by the depth-0 rays' own height-to-pixel relation, and
+//    adds its intensity there (light of different condenser directions is mutually incoherent).
+// The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
+// visible); the plate keeps its full dispersion. The Bertrand lens is ideal (it images the
+// back-focal plane; its own Fresnel losses are polarization-neutral to first order near the axis).
+#include "core/bench/bench_strategy.h"
+#include "core/microscope/scene.h"
+
+namespace pmsim {
+
+// Lens used for the condenser and the objective front element: assets/lenses/paper_rl425_rs43.json
+// (the paper's near-hemispheric lens), its front vertex `kWorkingDistanceMm` from the sample.
+constexpr double kWorkingDistanceMm = 0.5;
+
+// scene.optics: lens_depth (dT), schlick. Spectral bands: scene.render.wavelengths (0: 32).
+// Runs on the calling thread's TBB arena.
+StrategyResult render_physical_lens_model(const Scene& scene);
+
+}  // namespace pmsim

@@ -1,0 +1,260 @@
+#include "core/bench/reference_image.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <algorithm>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "core/bench/physical_lens_model.h"
+#include "core/io/atomic_file.h"
+#include "core/io/scene_file.h"
+#include "core/microscope/microscope_setup.h"
+#include "core/microscope/modal_fit.h"
+#include "core/microscope/optical_train.h"
+#include "core/microscope/sample_source.h"
+#include "core/render/image_develop.h"
+#include "core/render/progressive_renderer.h"
+#include "core/render/spectral_level.h"
+
+namespace pmsim {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// FNV-1a, 64 bit: a cache key, not security.
+std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string data_fingerprint() {
+  std::string all;
+  for (const char* sub : {"minerals", "materials", "sections"}) {
+    const fs::path dir = fs::path(asset_dir()) / sub;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir, ec)) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+      std::ifstream in(f, std::ios::binary);
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      all += f.filename().string() + ss.str();
+    }
+  }
+  return all;
+}
+
+constexpr char kMagic[8] = {'P', 'M', 'S', 'B', 'R', 'E', 'F', '1'};
+
+bool read_cache(const std::string& path, ReferenceImage& r) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  char magic[8];
+  std::int32_t wh[2];
+  in.read(magic, 8);
+  in.read(reinterpret_cast<char*>(wh), sizeof wh);
+  if (!in || std::memcmp(magic, kMagic, 8) != 0 || wh[0] <= 0 || wh[1] <= 0 || wh[0] > 16384 ||
+      wh[1] > 16384)
+    return false;
+  const std::size_t n = static_cast<std::size_t>(wh[0]) * wh[1];
+  r.width = wh[0];
+  r.height = wh[1];
+  r.xyz.resize(3 * n);
+  r.xyz_half.resize(3 * n);
+  r.lit.resize(n);
+  in.read(reinterpret_cast<char*>(r.xyz.data()), static_cast<std::streamsize>(3 * n * sizeof(float)));
+  in.read(reinterpret_cast<char*>(r.xyz_half.data()), static_cast<std::streamsize>(3 * n * sizeof(float)));
+  in.read(reinterpret_cast<char*>(r.lit.data()), static_cast<std::streamsize>(n));
+  return static_cast<bool>(in) && in.peek() == std::char_traits<char>::eof();
+}
+
+void write_cache(const std::string& path, const ReferenceImage& r) {
+  std::string bytes(kMagic, 8);
+  const std::int32_t wh[2] = {r.width, r.height};
+  bytes.append(reinterpret_cast<const char*>(wh), sizeof wh);
+  bytes.append(reinterpret_cast<const char*>(r.xyz.data()), r.xyz.size() * sizeof(float));
+  bytes.append(reinterpret_cast<const char*>(r.xyz_half.data()), r.xyz_half.size() * sizeof(float));
+  bytes.append(reinterpret_cast<const char*>(r.lit.data()), r.lit.size());
+  write_text_atomically(path, bytes);
+}
+
+struct UnitXyz {
+  glm::dvec3 full{0.0}, half{0.0};
+};
+
+// One unit, one direction: transmissions at every 1 nm band (full) and the 2 nm rule (half).
+void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const EvalUnit& unit,
+                        const glm::dvec3& k, std::vector<PlateModes>& modes, UnitXyz& acc) {
+  const int N = L.n;
+  const double two_pi = 2.0 * std::numbers::pi;
+  const OpticalDomain& dom = S.domains[unit.domain];
+  if (!dom.crystal || unit.thickness_um <= 0.0) {
+    for (int b = 0; b < N; ++b) {
+      const double t = jones_transmission(L.train[b], JonesMatrix::identity());
+      acc.full += L.weight[b] * t;
+      if (b % 2 == 0) acc.half += (L.weight[b] + L.weight[std::min(b + 1, N - 1)]) * t;
+    }
+    return;
+  }
+  modes.resize(N);
+  double max_step = 0.0;
+  for (int b = 0; b < N; ++b) {
+    PreparedPlate p = L.prepared[b][unit.domain];
+    p.thickness_um = unit.thickness_um;
+    modes[b] = plate_modes(p, k);
+    if (b > 0)
+      max_step = std::max(max_step, std::fabs(two_pi * (modes[b].retardation_nm / L.nm[b] -
+                                                        modes[b - 1].retardation_nm / L.nm[b - 1])));
+  }
+  const bool sample_jones = max_step < 0.25;
+  for (int b = 0; b < N; ++b) {
+    double t, t_half = 0.0;
+    if (sample_jones) {
+      PreparedPlate p = L.prepared[b][unit.domain];
+      p.thickness_um = unit.thickness_um;
+      t = jones_transmission(L.train[b], plate_jones(p, k));
+      t_half = t;
+    } else {
+      ModalPoint m;
+      modes_in_basis(modes[b], k, m.e1, m.e2);
+      m.t1 = modes[b].t1;
+      m.t2 = modes[b].t2;
+      m.gamma_nm = modes[b].retardation_nm;
+      const int lo = std::max(0, b - 1), hi = std::min(N - 1, b + 1);
+      m.dgamma_dnm = (modes[hi].retardation_nm - modes[lo].retardation_nm) / (L.nm[hi] - L.nm[lo]);
+      t = modal_transmission(L.train[b], m, L.band_nm);
+      if (b % 2 == 0) t_half = modal_transmission(L.train[b], m, 2.0 * L.band_nm);
+    }
+    if (!std::isfinite(t)) t = 0.0;
+    if (!std::isfinite(t_half)) t_half = 0.0;
+    acc.full += L.weight[b] * std::max(0.0, t);
+    if (b % 2 == 0) acc.half += (L.weight[b] + L.weight[std::min(b + 1, N - 1)]) * std::max(0.0, t_half);
+  }
+}
+
+}  // namespace
+
+Scene reference_scene(const Scene& scene) {
+  Scene r = scene;
+  r.render.strategy = "exact";
+  r.render.wavelengths = kReferenceBands;
+  r.render.single_wavelength_nm = 0.0;
+  if (r.sample_in && r.sample.type != SampleType::Plate) r.render.spp = std::max(r.render.spp, 16);
+  return r;
+}
+
+namespace {
+
+std::string cache_path(const std::string& cache_dir, const std::string& what) {
+  if (cache_dir.empty()) return "";
+  const std::uint64_t key = fnv1a(data_fingerprint(), fnv1a(what, fnv1a(kReferenceVersion)));
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.ref", static_cast<unsigned long long>(key));
+  std::error_code ec;
+  fs::create_directories(cache_dir, ec);
+  return (fs::path(cache_dir) / name).string();
+}
+
+bool try_cache(const std::string& path, const Scene& s, ReferenceImage& out) {
+  if (path.empty()) return false;
+  ReferenceImage cached;
+  if (!read_cache(path, cached) || cached.width != s.render.width || cached.height != s.render.height) return false;
+  cached.from_cache = true;
+  cached.cache_file = path;
+  out = std::move(cached);
+  return true;
+}
+
+std::vector<std::uint8_t> lit_mask(const MicroscopeSetup& S) {
+  const std::size_t n = static_cast<std::size_t>(S.width()) * S.height();
+  std::vector<std::uint8_t> lit(n);
+  for (std::size_t i = 0; i < n; ++i) lit[i] = S.pixel_offset[i] != S.pixel_offset[i + 1];
+  return lit;
+}
+
+}  // namespace
+
+ReferenceImage converged_reference(const Scene& scene, const std::string& cache_dir) {
+  const Scene rs = reference_scene(scene);
+  const std::string path = cache_path(cache_dir, scene_to_json(rs).dump());
+  ReferenceImage R;
+  if (try_cache(path, rs, R)) return R;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto S = build_setup(rs);
+  const SpectralLevel L = make_spectral_level(*S, kReferenceBands);
+  std::vector<UnitXyz> units(S->units.size());
+  tbb::enumerable_thread_specific<std::vector<PlateModes>> scratch;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, S->units.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      auto& modes = scratch.local();
+                      for (std::size_t u = r.begin(); u != r.end(); ++u) {
+                        const EvalUnit& unit = S->units[u];
+                        const int D = S->dirs_of(unit);
+                        UnitXyz acc;
+                        for (int d = 0; d < D; ++d) evaluate_direction(*S, L, unit, S->dir(unit, d), modes, acc);
+                        units[u].full = acc.full / static_cast<double>(D);
+                        units[u].half = acc.half / static_cast<double>(D);
+                      }
+                    });
+  R.width = S->width();
+  R.height = S->height();
+  std::vector<glm::dvec3> v(units.size());
+  RenderImage img;
+  for (std::size_t u = 0; u < units.size(); ++u) v[u] = units[u].full;
+  develop_image(*S, v, false, img);
+  R.xyz = std::move(img.xyz);
+  for (std::size_t u = 0; u < units.size(); ++u) v[u] = units[u].half;
+  develop_image(*S, v, false, img);
+  R.xyz_half = std::move(img.xyz);
+  R.lit = lit_mask(*S);
+  R.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (!path.empty()) {
+    write_cache(path, R);
+    R.cache_file = path;
+  }
+  return R;
+}
+
+ReferenceImage converged_physical_reference(const Scene& scene, const std::string& cache_dir) {
+  Scene rs = scene;
+  rs.optics.lens_model = LensModel::Physical;
+  rs.optics.lens_depth = 5;
+  rs.optics.schlick = false;
+  rs.render.wavelengths = 128;
+  rs.render.strategy = "modal";
+  const std::string path = cache_path(cache_dir, "physical-lens-model:" + scene_to_json(rs).dump());
+  ReferenceImage R;
+  if (try_cache(path, rs, R)) return R;
+  const auto t0 = std::chrono::steady_clock::now();
+  StrategyResult full = render_physical_lens_model(rs);
+  rs.render.wavelengths = 64;
+  StrategyResult half = render_physical_lens_model(rs);
+  Scene geo = rs;
+  geo.render.strategy = "exact";
+  R.width = rs.render.width;
+  R.height = rs.render.height;
+  R.xyz = std::move(full.xyz);
+  R.xyz_half = std::move(half.xyz);
+  R.lit = lit_mask(*build_setup(geo));
+  R.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (!path.empty()) {
+    write_cache(path, R);
+    R.cache_file = path;
+  }
+  return R;
+}
+
+}  // namespace pmsim
