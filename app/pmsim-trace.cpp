@@ -54,7 +54,11 @@ std::string num(double x) {
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
 }
-std::string vec(const glm::dvec3& v) { return "[" + num(v.x) + "," + num(v.y) + "," + num(v.z) + "]"; }
+std::string vec(const glm::dvec3& v) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "[%.17g,%.17g,%.17g]", v.x, v.y, v.z);
+  return buf;
+}
 
 int run(int argc, char** argv) {
   std::map<std::string, std::string> a;
