@@ -109,17 +109,24 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
     }
     return;
   }
-  modes.resize(N);
-  double max_step = 0.0;
-  for (int b = 0; b < N; ++b) {
+  // Phase step between neighbouring bands, |Δ(2πΓ/λ)| ≈ 2π·Γ/λ²·Δλ, largest at the blue end;
+  // estimated from three exact retardations (Γ varies slowly), with a 1.5 safety factor.
+  double gamma_max = 0.0;
+  for (int b : {0, N / 2, N - 1}) {
     PreparedPlate p = L.prepared[b][unit.domain];
     p.thickness_um = unit.thickness_um;
-    modes[b] = plate_modes(p, k);
-    if (b > 0)
-      max_step = std::max(max_step, std::fabs(two_pi * (modes[b].retardation_nm / L.nm[b] -
-                                                        modes[b - 1].retardation_nm / L.nm[b - 1])));
+    gamma_max = std::max(gamma_max, plate_modes(p, k).retardation_nm);
   }
-  const bool sample_jones = max_step < 0.25;
+  const double step = 1.5 * two_pi * gamma_max * L.band_nm / (L.nm[0] * L.nm[0]);
+  const bool sample_jones = step < 0.25;
+  if (!sample_jones) {
+    modes.resize(N);
+    for (int b = 0; b < N; ++b) {
+      PreparedPlate p = L.prepared[b][unit.domain];
+      p.thickness_um = unit.thickness_um;
+      modes[b] = plate_modes(p, k);
+    }
+  }
   for (int b = 0; b < N; ++b) {
     double t, t_half = 0.0;
     if (sample_jones) {
