@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -133,4 +135,24 @@ TEST(LensIntersection, RayAlongTheAxisHitsBothVerticesAndNeverTheLedge) {
   EXPECT_NEAR(h.t, g.thickness_mm(), 1e-14);
   // Miss: a ray parallel to the axis outside the aperture.
   EXPECT_FALSE(g.intersect({5, 0, -10}, {0, 0, 1}, 1e30, LensSurface::None, h));
+}
+
+TEST(LensAssets, ShippedLensFilesAreValidAndNameTheirSource) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/lenses")) {
+    if (e.path().extension() != ".json") continue;
+    ++n;
+    std::ifstream f(e.path());
+    const json j = json::parse(f);
+    EXPECT_TRUE(j.contains("source") && j["source"].is_string()) << e.path();
+    // Parses, validates, and finds its glass and medium in the material library.
+    EXPECT_NO_THROW(Lens(load_lens_spec(e.path().string()))) << e.path();
+  }
+  EXPECT_GE(n, 3);
+  // The plano-convex N-SF11 lens: thin-lens estimate f = R/(n−1) with n_d = 1.78472; the thick-lens
+  // effective focal length of a plano-convex lens is exactly R/(n−1), so 1e-3 mm covers the
+  // catalogue-vs-Sellmeier n_d difference (≤ 1e-5 → 2.5e-4 mm).
+  const Lens pc(load_lens_spec(std::string(PMSIM_SOURCE_DIR) + "/assets/lenses/planoconvex_nsf11.json"));
+  const double nd = pc.media(587.5618).n_glass;
+  EXPECT_NEAR(pc.geometry().front_radius_mm() / (nd - 1), 15.5 / 0.78472, 1e-3);
 }
