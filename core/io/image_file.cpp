@@ -24,7 +24,11 @@ std::string lower_extension(const std::string& path) {
 
 void add_metadata(OIIO::ImageSpec& spec, const nlohmann::json& metadata) {
   spec.attribute("Software", "pmsim");
-  if (!metadata.is_null()) spec.attribute("pmsim:scene", metadata.dump());
+  if (metadata.is_null()) return;
+  // "pmsim:scene" survives in EXR and PNG text chunks; TIFF keeps only its standard tags, so the
+  // same JSON also goes into the ImageDescription tag.
+  spec.attribute("pmsim:scene", metadata.dump());
+  spec.attribute("ImageDescription", metadata.dump());
 }
 
 template <class Pixel>
@@ -97,10 +101,12 @@ LoadedImage read_image(const std::string& path) {
   img.pixels.resize(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
     throw std::runtime_error("cannot read " + path + ": " + in->geterror());
-  const std::string scene = spec.get_string_attribute("pmsim:scene");
+  std::string scene = spec.get_string_attribute("pmsim:scene");
+  if (scene.empty()) scene = spec.get_string_attribute("ImageDescription");
   if (!scene.empty()) {
     img.metadata = nlohmann::json::object();
-    img.metadata["pmsim:scene"] = nlohmann::json::parse(scene, nullptr, false);
+    const nlohmann::json j = nlohmann::json::parse(scene, nullptr, false);
+    if (!j.is_discarded()) img.metadata["pmsim:scene"] = j;
   }
   in->close();
   return img;

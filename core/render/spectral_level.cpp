@@ -35,6 +35,15 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
       L.weight.push_back(w);
       L.moment.push_back(m);
     }
+    // Normalise so that T ≡ 1 gives the illuminant white exactly at every n (the sub-rule above
+    // differs from the tables' own quadrature by ~1e-6).
+    glm::dvec3 sum(0.0);
+    for (const glm::dvec3& w : L.weight) sum += w;
+    const glm::dvec3 scale = illuminant_white_xyz(S.scene.illuminant) / sum;
+    for (int i = 0; i < L.n; ++i) {
+      L.weight[i] *= scale;
+      L.moment[i] *= scale;
+    }
   }
   for (double nm : L.nm) {
     L.train.push_back(make_train(S.scene, S.compensator, nm));
