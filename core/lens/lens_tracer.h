@@ -91,7 +91,11 @@ struct LensBundle {
   double energy_defect() const;
 };
 
-// Trace one ray through one lens. The appending overload adds to `out` without clearing it
+// Trace one ray through one lens. in.origin must lie outside the lens (pass the ray as it was
+// before it reached the lens, not an Embree hit point on it); an origin strictly inside the glass
+// is traced from there without an entry interaction. in.pol is re-orthonormalized to in.dir.
+// If the outside medium is denser and P1 totally reflects, the two linear parts are outgoing
+// depth-0 rays (they never enter the glass), not a Tir event. The appending overload adds to `out` without clearing it
 // (reuse one bundle across calls: no allocation once its vectors have grown).
 LensBundle trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt);
 void trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt,
