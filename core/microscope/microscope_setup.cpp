@@ -109,33 +109,32 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                                         : (scene.sample_in && type != SampleType::Plate ? 4 : 1));
   S->pixel_offset.assign(static_cast<std::size_t>(W) * H + 1, 0);
 
-  // Units in parallel light (or cone-integrated), keyed by domain and wedge step.
-  std::map<std::pair<int, int>, int> unit_of;
+  // Units in parallel light (or cone-integrated): one per domain, or one per thickness step of a
+  // wedge. Created up front so that the per-pixel pass below is read-only and runs in parallel.
   const int wedge_steps = cono ? 256 : 2 * std::max(W, H);
-  auto unit_for = [&](int domain, int step, bool cone) {
-    auto key = std::make_pair(domain, step);
-    auto it = unit_of.find(key);
-    if (it != unit_of.end()) return it->second;
-    EvalUnit u;
-    u.domain = domain;
-    u.cone = cone;
-    u.thickness_um = step < 0 ? S->domains[domain].thickness_um
-                              : scene.sample.thickness_um * step / (wedge_steps - 1.0);
-    S->units.push_back(u);
-    return unit_of[key] = static_cast<int>(S->units.size()) - 1;
-  };
+  const bool field_units = !(cono && scene.bertrand_in);
+  if (field_units) {
+    const int n = is_wedge ? wedge_steps : static_cast<int>(S->domains.size());
+    for (int i = 0; i < n; ++i) {
+      EvalUnit u;
+      u.domain = is_wedge ? 0 : i;
+      u.cone = cono;
+      u.thickness_um = is_wedge ? scene.sample.thickness_um * i / (wedge_steps - 1.0)
+                                : S->domains[i].thickness_um;
+      S->units.push_back(u);
+    }
+  }
   // Refs of a field point seen in parallel (or cone) light.
-  auto add_field_point = [&](RefBuilder& rb, const glm::dvec2& f, float w, bool cone) {
+  auto add_field_point = [&](RefBuilder& rb, const glm::dvec2& f, float w) {
     const glm::dvec2 p = sample_from_field(f, scene.stage_deg);
-    const int dom = domain_at_sample(p);
     if (is_wedge) {
       const double pos = wedge_thickness_um(scene, p) / scene.sample.thickness_um * (wedge_steps - 1);
       const int i0 = std::min(static_cast<int>(pos), wedge_steps - 2);
       const float frac = static_cast<float>(pos - i0);
-      rb.add(unit_for(dom, i0, cone), w * (1 - frac));
-      rb.add(unit_for(dom, i0 + 1, cone), w * frac);
+      rb.add(i0, w * (1 - frac));
+      rb.add(i0 + 1, w * frac);
     } else {
-      rb.add(unit_for(dom, -1, cone), w);
+      rb.add(domain_at_sample(p), w);
     }
   };
 
@@ -166,7 +165,7 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     const int n = 8;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        add_field_point(field, field_from_pixel(n, n, i + 0.5, j + 0.5), 1.0f / (n * n), false);
+        add_field_point(field, field_from_pixel(n, n, i + 0.5, j + 0.5), 1.0f / (n * n));
     const double rho_spot = kParallelBeamSinTheta / scene.objective.na;
     for (int y = 0; y < H; ++y)
       for (int x = 0; x < W; ++x) {
@@ -185,19 +184,59 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     }
     const int n = spp_side;
     S->spatial_samples = n * n;
-    RefBuilder rb;
-    for (int y = 0; y < H; ++y) {
-      if (cancel && *cancel) return nullptr;
-      for (int x = 0; x < W; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * W + x;
-        S->pixel_offset[i] = static_cast<int>(S->refs.size());
-        rb.tmp.clear();
-        for (int sy = 0; sy < n; ++sy)
-          for (int sx = 0; sx < n; ++sx)
-            add_field_point(rb, field_from_pixel(W, H, x + (sx + 0.5) / n, y + (sy + 0.5) / n),
-                            1.0f / (n * n), cone);
-        S->refs.insert(S->refs.end(), rb.tmp.begin(), rb.tmp.end());
+    // Sections: the domain at every pixel centre first; only pixels on a grain or lamella boundary
+    // (a 4-neighbour differs) need the sub-pixel samples.
+    const bool section_map = scene.sample_in && type == SampleType::Section && n > 1;
+    std::vector<int> centre_domain;
+    if (section_map) {
+      centre_domain.resize(static_cast<std::size_t>(W) * H);
+      tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
+        for (int y = r.begin(); y != r.end(); ++y)
+          for (int x = 0; x < W; ++x)
+            centre_domain[static_cast<std::size_t>(y) * W + x] = domain_at_sample(
+                sample_from_field(field_from_pixel(W, H, x + 0.5, y + 0.5), scene.stage_deg));
+      });
+    }
+    auto interior = [&](int x, int y) {
+      const int d = centre_domain[static_cast<std::size_t>(y) * W + x];
+      auto same = [&](int xx, int yy) {
+        return xx < 0 || yy < 0 || xx >= W || yy >= H || centre_domain[static_cast<std::size_t>(yy) * W + xx] == d;
+      };
+      return same(x - 1, y) && same(x + 1, y) && same(x, y - 1) && same(x, y + 1);
+    };
+    // Rows in parallel, each into its own list, then concatenated in order.
+    std::vector<std::vector<PixelRef>> row_refs(H);
+    std::vector<std::vector<int>> row_counts(H);
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& r) {
+      RefBuilder rb;
+      for (int y = r.begin(); y != r.end(); ++y) {
+        if (cancel && *cancel) return;
+        row_counts[y].resize(W);
+        for (int x = 0; x < W; ++x) {
+          rb.tmp.clear();
+          if (section_map && interior(x, y)) {
+            rb.tmp.push_back({centre_domain[static_cast<std::size_t>(y) * W + x], 1.0f});
+            row_counts[y][x] = 1;
+            row_refs[y].push_back(rb.tmp[0]);
+            continue;
+          }
+          for (int sy = 0; sy < n; ++sy)
+            for (int sx = 0; sx < n; ++sx)
+              add_field_point(rb, field_from_pixel(W, H, x + (sx + 0.5) / n, y + (sy + 0.5) / n),
+                              1.0f / (n * n));
+          row_counts[y][x] = static_cast<int>(rb.tmp.size());
+          row_refs[y].insert(row_refs[y].end(), rb.tmp.begin(), rb.tmp.end());
+        }
       }
+    });
+    if (cancel && *cancel) return nullptr;
+    for (int y = 0; y < H; ++y) {
+      int k = 0;
+      for (int x = 0; x < W; ++x) {
+        S->pixel_offset[static_cast<std::size_t>(y) * W + x] = static_cast<int>(S->refs.size()) + k;
+        k += row_counts[y][x];
+      }
+      S->refs.insert(S->refs.end(), row_refs[y].begin(), row_refs[y].end());
     }
     report << "view: " << (cone ? "image plane in the convergent cone (" + std::to_string(S->cone_dirs.size()) + " directions)"
                                 : std::string("orthoscopic, parallel light"))

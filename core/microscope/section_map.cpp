@@ -20,7 +20,7 @@ int SectionMap::domain_at(const glm::dvec2& p) const {
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const SectionGrain& g = grains[i];
     const glm::dvec2 d = p - g.seed;
-    const double c = std::cos(g.elongation_rad), s = std::sin(g.elongation_rad);
+    const double c = g.cos_elong, s = g.sin_elong;
     const double along = (d.x * c + d.y * s) / g.elongation, across = -d.x * s + d.y * c;
     const double dist = (along * along + across * across) / (g.weight * g.weight);
     if (dist < best_d) {
@@ -31,8 +31,7 @@ int SectionMap::domain_at(const glm::dvec2& p) const {
   const SectionGrain& g = grains[best];
   int lamella = 0;
   if (g.twinned) {
-    const glm::dvec2 n{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
-    lamella = static_cast<int>(std::floor(glm::dot(p - g.seed, n) / g.twin_width)) & 1;
+    lamella = static_cast<int>(std::floor(glm::dot(p - g.seed, g.twin_normal) / g.twin_width)) & 1;
   }
   return 2 * best + lamella;
 }
@@ -115,6 +114,9 @@ SectionMap parse_section(const std::string& path) {
     } else {
       g.twin_orientation = g.orientation;
     }
+    g.cos_elong = std::cos(g.elongation_rad);
+    g.sin_elong = std::sin(g.elongation_rad);
+    g.twin_normal = {-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
     m.grains.push_back(std::move(g));
   }
   return m;

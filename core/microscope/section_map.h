@@ -28,6 +28,9 @@ struct SectionGrain {
   double twin_trace_rad = 0.0;        // direction of the lamella traces
   double twin_width = 0.05;           // lamella width (field units)
   glm::dmat3 twin_orientation{1.0};   // orientation of the odd lamellae
+  // Derived once at load (the map lookup runs per sub-pixel).
+  double cos_elong = 1.0, sin_elong = 0.0;
+  glm::dvec2 twin_normal{0.0, 1.0};
 };
 
 class SectionMap {
