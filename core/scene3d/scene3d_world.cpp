@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/io/input_error.h"
+#include "core/lens/lens_embree.h"
 
 namespace pmsim {
 namespace {
@@ -41,72 +42,24 @@ void rectangle(const glm::dvec3& c, const glm::dvec3& n, const glm::dvec3& u, gl
 
 }  // namespace
 
-struct LensGeometryRef {
-  const LensGeometry* geometry;
-};
-
-namespace {
-using LensUserData = LensGeometryRef;
-
-void lens_bounds(const RTCBoundsFunctionArguments* args) {
-  const auto* d = static_cast<const LensUserData*>(args->geometryUserPtr);
-  glm::dvec3 lo, hi;
-  d->geometry->bounds(lo, hi);
-  // Widen by a float ulp-scale margin so that float rounding never culls a grazing hit.
-  const double m = 1e-5 * (1.0 + glm::length(hi - lo));
-  args->bounds_o->lower_x = static_cast<float>(lo.x - m);
-  args->bounds_o->lower_y = static_cast<float>(lo.y - m);
-  args->bounds_o->lower_z = static_cast<float>(lo.z - m);
-  args->bounds_o->upper_x = static_cast<float>(hi.x + m);
-  args->bounds_o->upper_y = static_cast<float>(hi.y + m);
-  args->bounds_o->upper_z = static_cast<float>(hi.z + m);
-}
-
-bool lens_hit(const LensGeometry& g, const RTCRay& ray, LensHit& hit) {
-  const glm::dvec3 o(ray.org_x, ray.org_y, ray.org_z);
-  glm::dvec3 d(ray.dir_x, ray.dir_y, ray.dir_z);
-  const double len = glm::length(d);
-  if (!(len > 0.0)) return false;
-  d /= len;
-  const double t0 = ray.tnear * len, t1 = ray.tfar * len;
-  if (!(t1 > t0)) return false;
-  if (!g.intersect(o + t0 * d, d, t1 - t0, LensSurface::None, hit)) return false;
-  hit.t = (hit.t + t0) / len;
-  return true;
-}
-
-void lens_intersect(const RTCIntersectFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  const auto* d = static_cast<const LensUserData*>(args->geometryUserPtr);
-  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  LensHit h;
-  if (!lens_hit(*d->geometry, rh->ray, h)) return;
-  rh->ray.tfar = static_cast<float>(h.t);
-  rh->hit.Ng_x = static_cast<float>(h.normal.x);
-  rh->hit.Ng_y = static_cast<float>(h.normal.y);
-  rh->hit.Ng_z = static_cast<float>(h.normal.z);
-  rh->hit.u = rh->hit.v = 0.0f;
-  rh->hit.primID = args->primID;
-  rh->hit.geomID = args->geomID;
-  rh->hit.instID[0] = args->context->instID[0];
-}
-
-void lens_occluded(const RTCOccludedFunctionNArguments* args) {
-  if (args->N != 1 || !args->valid[0]) return;
-  const auto* d = static_cast<const LensUserData*>(args->geometryUserPtr);
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  LensHit h;
-  if (lens_hit(*d->geometry, *ray, h)) ray->tfar = -std::numeric_limits<float>::infinity();
-}
-
-}  // namespace
-
 Scene3dWorld::Scene3dWorld(const Scene3dDescription& desc) : desc_(desc) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
   rtcSetDeviceErrorFunction(device_, embree_error, &embree_message_);
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  try {
+    build();
+  } catch (...) {
+    // The destructor does not run for a constructor that throws.
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+    throw;
+  }
+}
+
+void Scene3dWorld::build() {
+  const Scene3dDescription& desc = desc_;
 
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   auto grow = [&](const glm::dvec3& p) {
@@ -242,18 +195,8 @@ void Scene3dWorld::add_lens(const Scene3dObject& o, int object_index) {
     throw InputError(desc_.file, o.key + (e.key.empty() ? "" : "." + e.key), e.value,
                      std::string("invalid lens: ") + e.what());
   }
-  const Lens& lens = *lenses_.back();
-  auto* user = new LensUserData{&lens.geometry()};
-  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(g, 1);
-  rtcSetGeometryUserData(g, user);
-  rtcSetGeometryBoundsFunction(g, lens_bounds, nullptr);
-  rtcSetGeometryIntersectFunction(g, lens_intersect);
-  rtcSetGeometryOccludedFunction(g, lens_occluded);
-  rtcCommitGeometry(g);
-  const unsigned id = rtcAttachGeometry(scene_, g);
-  rtcReleaseGeometry(g);
-  lens_user_data_.emplace_back(user);
+  // The lens module's user geometry (double-precision LensGeometry behind Embree callbacks).
+  const unsigned id = attach_lens(device_, scene_, lenses_.back()->geometry());
   GeometryInfo info{Scene3dSurfaceKind::Lens, object_index, -1,
                     static_cast<int>(lenses_.size() - 1), -1, {}, {}};
   if (geometry_.size() <= id) geometry_.resize(id + 1, info);

@@ -28,8 +28,6 @@ struct Scene3dHit {
   int light = -1;     // index into description.lights (emitter)
 };
 
-struct LensGeometryRef;
-
 class Scene3dWorld {
  public:
   // Builds and commits the Embree scene. Lens keys are validated here (InputError naming
@@ -60,6 +58,7 @@ class Scene3dWorld {
   };
   void add_triangles(const std::vector<glm::dvec3>& v, const std::vector<glm::ivec3>& t,
                      GeometryInfo info);
+  void build();
   void add_lens(const Scene3dObject& o, int object_index);
 
   const Scene3dDescription& desc_;
@@ -67,7 +66,6 @@ class Scene3dWorld {
   RTCScene scene_ = nullptr;
   std::vector<GeometryInfo> geometry_;  // by Embree geometry id
   std::vector<std::unique_ptr<Lens>> lenses_;
-  std::vector<std::unique_ptr<LensGeometryRef>> lens_user_data_;  // Embree user pointers
   double scene_size_mm_ = 1.0;
   std::string embree_message_;  // first error reported by the device
 };

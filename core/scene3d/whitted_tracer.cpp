@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
+#include "core/io/input_error.h"
 #include "core/materials/medium.h"
 #include "core/optics/beer_lambert.h"
 #include "core/optics/interaction.h"
@@ -100,9 +103,13 @@ WhittedTracer::WhittedTracer(const Scene3dWorld& world)
     std::vector<double> n(nc, 1.0), mu(nc, 0.0);
     if (m.type == Scene3dMaterial::Type::Glass) {
       const Medium& med = find_medium(m.medium);
-      for (int i = 0; i < nc; ++i) {
-        n[i] = med.n(nm_[i]);
-        mu[i] = med.attenuation_per_mm(nm_[i]);
+      try {
+        for (int i = 0; i < nc; ++i) {
+          n[i] = med.n(nm_[i]);
+          mu[i] = med.attenuation_per_mm(nm_[i]);
+        }
+      } catch (const std::out_of_range& e) {
+        throw InputError(desc_.file, "materials." + m.name + ".medium", m.medium, e.what());
       }
     }
     glass_n_.push_back(std::move(n));
@@ -121,9 +128,14 @@ WhittedTracer::WhittedTracer(const Scene3dWorld& world)
   }
   background_ = spectrum_of_rgb(rs.background_rgb, Illuminant::D65);
   ambient_ = spectrum_of_rgb(glm::dvec3(rs.ambient), Illuminant::D65);
-  for (const auto& lens : world.lenses()) {
+  for (std::size_t k = 0; k < world.lenses().size(); ++k) {
     std::vector<LensMedia> m(nc);
-    for (int i = 0; i < nc; ++i) m[i] = lens->media(nm_[i]);
+    try {
+      for (int i = 0; i < nc; ++i) m[i] = world.lenses()[k]->media(nm_[i]);
+    } catch (const std::out_of_range& e) {
+      throw InputError(desc_.file, "lens " + std::to_string(k) + ".glass",
+                       world.lenses()[k]->spec().glass, e.what());
+    }
     lens_media_.push_back(std::move(m));
   }
 }
