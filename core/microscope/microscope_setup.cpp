@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -64,6 +65,61 @@ PreparedPlate MicroscopeSetup::prepare(int domain, double wavelength_nm) const {
   spec.fresnel = true;
   return prepare_plate(spec, wavelength_nm);
 }
+
+void MicroscopeSetup::lens_jones(const glm::dvec3& k, glm::dmat2& c, glm::dmat2& o) const {
+  if (!lenses) {
+    c = o = glm::dmat2(1.0);
+    return;
+  }
+  c = o = lenses->jones(k);
+}
+
+JonesMatrix MicroscopeSetup::with_lenses(const JonesMatrix& J, const glm::dvec3& k) const {
+  if (!lenses) return J;
+  const glm::dmat2 m = lenses->jones(k);  // same profile for condenser and objective (reciprocity)
+  const JonesMatrix L{m[0][0], m[1][0], m[0][1], m[1][1]};
+  return L * J * L;
+}
+
+namespace {
+// CIELAB lightness (CIE 15:2004 §8.2.1) of a relative luminance, Y_white = 1.
+double lightness(double Y) {
+  const double e = 216.0 / 24389.0, k = 24389.0 / 27.0;
+  return Y > e ? 116.0 * std::cbrt(Y) - 16.0 : k * Y;
+}
+
+// Mean lightness difference at 550 nm between the ideal and the physical lens model over a subset
+// of the units: the estimate behind optics.lens_model = auto. The lenses only change polarization
+// and transmission (not the spectrum), so the grey-level difference at mid-spectrum is their effect.
+double lens_model_difference(const MicroscopeSetup& S, const LensPolarizationTable& table) {
+  const TrainState train = make_train(S.scene, S.compensator, 550.0);
+  std::vector<PreparedPlate> prepared(S.domains.size());
+  for (std::size_t d = 0; d < S.domains.size(); ++d)
+    if (S.domains[d].crystal) prepared[d] = S.prepare(static_cast<int>(d), 550.0);
+  const std::size_t stride = std::max<std::size_t>(1, S.units.size() / 512);
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t u = 0; u < S.units.size(); u += stride) {
+    const EvalUnit& unit = S.units[u];
+    const int D = S.dirs_of(unit);
+    for (int d = 0; d < D; d += std::max(1, D / 8)) {
+      const glm::dvec3 k = S.dir(unit, d);
+      JonesMatrix J = JonesMatrix::identity();
+      if (S.domains[unit.domain].crystal && unit.thickness_um > 0) {
+        PreparedPlate p = prepared[unit.domain];
+        p.thickness_um = unit.thickness_um;
+        J = plate_jones(p, k);
+      }
+      const glm::dmat2 m = table.jones(k);
+      const JonesMatrix L{m[0][0], m[1][0], m[0][1], m[1][1]};
+      const double ideal = jones_transmission(train, J), physical = jones_transmission(train, L * J * L);
+      sum += std::fabs(lightness(ideal) - lightness(physical));
+      ++n;
+    }
+  }
+  return n ? sum / n : 0.0;
+}
+}  // namespace
 
 std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                                                    const std::atomic<bool>* cancel) {
@@ -260,7 +316,30 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                            : active && strat == "auto" ? "exact Jones matrix per wavelength (optically active crystal)"
                                                        : "exact Jones matrix per wavelength")
                  : "modal fit (3 mode solutions per direction, band-averaged interference)");
-  report << "; condenser, objective, Bertrand lens: ideal (perfect imaging, polarization kept)";
+  // Lenses. In parallel light every ray runs along the axis, where the two models agree exactly
+  // (the physical one is normalised to its axial transmission), so only oblique light can need
+  // the physical model.
+  const bool oblique = cono;
+  char buf[160];
+  if (scene.optics.lens_model == LensModel::Physical) {
+    S->lenses = &lens_polarization_table(scene.optics.schlick);
+    report << "; condenser, objective: physical SML lenses (Fresnel " << (scene.optics.schlick ? "Schlick" : "exact")
+           << ", depth-0 path)";
+  } else if (scene.optics.lens_model == LensModel::Auto && oblique) {
+    const LensPolarizationTable& table = lens_polarization_table(scene.optics.schlick);
+    const double diff = lens_model_difference(*S, table);
+    if (diff > scene.render.tolerance_de2000) {
+      S->lenses = &table;
+      std::snprintf(buf, sizeof buf, "; condenser, objective: physical SML lenses (auto: ideal would differ by ΔL*≈%.2f)", diff);
+    } else {
+      std::snprintf(buf, sizeof buf, "; condenser, objective: ideal (auto: physical differs by ΔL*≈%.2f)", diff);
+    }
+    report << buf;
+  } else {
+    report << "; condenser, objective: ideal (perfect imaging, polarization kept"
+           << (scene.optics.lens_model == LensModel::Auto ? "; auto: exact for axial light)" : ")");
+  }
+  report << "; Bertrand lens: ideal (images the back focal plane)";
 
   if (S->plate_model == PlateModel::Modal) {
     S->dirs_per_unit = S->cone_dirs.empty() ? 1 : static_cast<int>(S->cone_dirs.size());
@@ -283,14 +362,18 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                           const EvalUnit& unit = S->units[u];
                           const OpticalDomain& dom = S->domains[unit.domain];
                           for (int d = 0; d < S->dirs_of(unit); ++d) {
+                            glm::dmat2 jc, jo;
+                            S->lens_jones(S->dir(unit, d), jc, jo);
+                            const glm::dmat2* pc = S->lenses ? &jc : nullptr;
+                            const glm::dmat2* po = S->lenses ? &jo : nullptr;
                             if (!dom.crystal || unit.thickness_um <= 0.0) {
-                              S->terms[u * D + d] = identity_modal_terms(train);
+                              S->terms[u * D + d] = identity_modal_terms(train, pc, po);
                               continue;
                             }
                             ModalFit fit;
                             fit.fit(anchors[unit.domain].data(), S->dir(unit, d));
-                            S->terms[u * D + d] =
-                                make_modal_terms(fit, train, unit.thickness_um / dom.thickness_um);
+                            S->terms[u * D + d] = make_modal_terms(
+                                fit, train, unit.thickness_um / dom.thickness_um, pc, po);
                           }
                         }
                       });

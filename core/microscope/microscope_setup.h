@@ -16,7 +16,9 @@
 #include "core/microscope/compensator.h"
 #include "core/microscope/modal_fit.h"
 #include "core/microscope/scene.h"
+#include "core/microscope/lens_polarization.h"
 #include "core/microscope/section_map.h"
+#include "core/optics/jones.h"
 
 namespace pmsim {
 
@@ -56,6 +58,12 @@ struct MicroscopeSetup {
   std::vector<ModalTerms> terms;                 // modal: unit u, direction d at u*dirs_per_unit+d
   int dirs_per_unit = 1;
   std::string model_report;
+  const LensPolarizationTable* lenses = nullptr;  // physical lens model; null = ideal
+
+  // Condenser and objective Jones matrices for a direction (identity for ideal lenses).
+  void lens_jones(const glm::dvec3& k_air, glm::dmat2& condenser, glm::dmat2& objective) const;
+  // The whole sample-side train as one Jones matrix: objective · sample · condenser.
+  JonesMatrix with_lenses(const JonesMatrix& sample, const glm::dvec3& k_air) const;
 
   int width() const { return scene.render.width; }
   int height() const { return scene.render.height; }

@@ -82,7 +82,8 @@ namespace pmsim {
 namespace {
 // Coefficients of one anchor from the mode directions and transmissions.
 void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double t2,
-              const TrainState& t, double out[5]) {
+              const TrainState& t, const glm::dmat2* lens_in, const glm::dmat2* lens_out,
+              double out[5]) {
   glm::dvec2 e1 = e1in, e2 = e2in;
   double det = e1.x * e2.y - e1.y * e2.x;
   if (std::fabs(det) < 1e-9) {
@@ -90,13 +91,17 @@ void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double 
     det = 1.0;
   }
   const glm::dvec2 d1{e2.y / det, -e2.x / det}, d2{-e1.y / det, e1.x / det};
-  const double a[2] = {t1 * glm::dot(d1, t.polarizer), t2 * glm::dot(d2, t.polarizer)};
+  // The condenser acts on the polarizer's field before the sample splits it into modes; the
+  // objective on each mode's field after it.
+  const glm::dvec2 pol = lens_in ? *lens_in * t.polarizer : t.polarizer;
+  const double a[2] = {t1 * glm::dot(d1, pol), t2 * glm::dot(d2, pol)};
+  const glm::dvec2 f1 = lens_out ? *lens_out * e1 : e1, f2 = lens_out ? *lens_out * e2 : e2;
   for (int i = 0; i < 5; ++i) out[i] = 0.0;
   for (int o = 0; o < t.outputs; ++o) {
     double amp[4];
     int sm[4], sk[4], n = 0;
     for (int m = 0; m < 2; ++m) {
-      const glm::dvec2& em = m == 0 ? e1 : e2;
+      const glm::dvec2& em = m == 0 ? f1 : f2;
       for (int k = 0; k < t.comp_modes; ++k) {
         const double g = t.comp_modes == 1
                              ? glm::dot(t.output[o], em)
@@ -126,23 +131,25 @@ void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double 
 }
 }  // namespace
 
-ModalTerms make_modal_terms(const ModalFit& f, const TrainState& train, double s) {
+ModalTerms make_modal_terms(const ModalFit& f, const TrainState& train, double s,
+                            const glm::dmat2* lens_in, const glm::dmat2* lens_out) {
   ModalTerms m;
   for (int a = 0; a < 3; ++a) {
     m.gamma_nm[a] = s * f.gamma_[a];
     double c[5];
     const double t1 = s == 1.0 ? f.t1_[a] : std::pow(f.t1_[a], s);
     const double t2 = s == 1.0 ? f.t2_[a] : std::pow(f.t2_[a], s);
-    terms_at(f.e1_[a], f.e2_[a], t1, t2, train, c);
+    terms_at(f.e1_[a], f.e2_[a], t1, t2, train, lens_in, lens_out, c);
     for (int i = 0; i < 5; ++i) m.c[i][a] = c[i];
   }
   return m;
 }
 
-ModalTerms identity_modal_terms(const TrainState& train) {
+ModalTerms identity_modal_terms(const TrainState& train, const glm::dmat2* lens_in,
+                                const glm::dmat2* lens_out) {
   ModalTerms m;
   double c[5];
-  terms_at({1.0, 0.0}, {0.0, 1.0}, 1.0, 1.0, train, c);
+  terms_at({1.0, 0.0}, {0.0, 1.0}, 1.0, 1.0, train, lens_in, lens_out, c);
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 5; ++i) m.c[i][a] = c[i];
   return m;

@@ -4,6 +4,8 @@
 // dispersion is nearly linear) of Γ, the mode directions and transmissions. The fast-varying part
 // of the response — the phase 2πΓ/λ — is then evaluated exactly at any wavelength, so a figure
 // needs three mode solutions per pixel instead of one per wavelength.
+#include <glm/mat2x2.hpp>
+
 #include "core/crystal/plate.h"
 #include "core/microscope/optical_train.h"
 
@@ -24,7 +26,8 @@ class ModalFit {
   double retardation_nm(double wavelength_nm) const;
 
  private:
-  friend ModalTerms make_modal_terms(const ModalFit&, const TrainState&, double);
+  friend ModalTerms make_modal_terms(const ModalFit&, const TrainState&, double, const glm::dmat2*,
+                                     const glm::dmat2*);
   double gamma_[3]{};
   glm::dvec2 e1_[3], e2_[3];
   double t1_[3]{}, t2_[3]{};
@@ -46,10 +49,14 @@ struct ModalTerms {
   double c[5][3]{};   // [C0, Cφ, Cχ, C₊, C₋][anchor]
 };
 // thickness_scale: the plate is that many times the fitted thickness (Γ ∝ d, t → t^scale).
+// lens_in / lens_out: real Jones matrices of the condenser (before the sample) and the objective
+// (after it) for this direction, in the ray's transverse basis; null = ideal lenses.
 ModalTerms make_modal_terms(const ModalFit& fit, const TrainState& train,
-                            double thickness_scale = 1.0);
+                            double thickness_scale = 1.0, const glm::dmat2* lens_in = nullptr,
+                            const glm::dmat2* lens_out = nullptr);
 // The identity sample (empty stage, isotropic layer) in the same train.
-ModalTerms identity_modal_terms(const TrainState& train);
+ModalTerms identity_modal_terms(const TrainState& train, const glm::dmat2* lens_in = nullptr,
+                                const glm::dmat2* lens_out = nullptr);
 
 // Lagrange weights of the three anchors at wavelength_nm (value, and d/dλ).
 void modal_anchor_weights(double wavelength_nm, double L[3], double dL_dnm[3]);

@@ -49,7 +49,7 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
       pp.thickness_um = p.thickness_um;
       J = plate_jones(pp, k);
     }
-    const double t = jones_transmission(train, J);
+    const double t = jones_transmission(train, S->with_lenses(J, k));
     p.wavelength_nm.push_back(nm);
     p.transmission.push_back(std::isfinite(t) ? t : 0.0);
   }

@@ -66,12 +66,17 @@ double unit_transmission(const MicroscopeSetup& S, const SpectralLevel& L, int u
   const EvalUnit& unit = S.units[u];
   const OpticalDomain& dom = S.domains[unit.domain];
   const TrainState& train = L.train[i];
-  if (!dom.crystal || unit.thickness_um <= 0.0) return jones_transmission(train, JonesMatrix::identity());
-  PreparedPlate p = L.prepared.empty() ? S.prepare(unit.domain, L.nm[i]) : L.prepared[i][unit.domain];
-  p.thickness_um = unit.thickness_um;
   const int D = S.dirs_of(unit);
   double t = 0.0;
-  for (int d = 0; d < D; ++d) t += jones_transmission(train, plate_jones(p, S.dir(unit, d)));
+  if (!dom.crystal || unit.thickness_um <= 0.0) {
+    for (int d = 0; d < D; ++d)
+      t += jones_transmission(train, S.with_lenses(JonesMatrix::identity(), S.dir(unit, d)));
+    return t / D;
+  }
+  PreparedPlate p = L.prepared.empty() ? S.prepare(unit.domain, L.nm[i]) : L.prepared[i][unit.domain];
+  p.thickness_um = unit.thickness_um;
+  for (int d = 0; d < D; ++d)
+    t += jones_transmission(train, S.with_lenses(plate_jones(p, S.dir(unit, d)), S.dir(unit, d)));
   t /= D;
   return std::isfinite(t) ? std::max(0.0, t) : 0.0;
 }

@@ -1,0 +1,33 @@
+#pragma once
+// The physical lens model: the condenser top lens and the objective front lens are SML lenses
+// (core/lens; assets/lenses/paper_rl425_rs43.json — the paper's near-hemispheric N-BK7 lens),
+// each with its focus on the specimen, 0.5 mm working distance. A ray leaving (or reaching) the
+// specimen at angle θ crosses two air–glass faces at oblique incidence; Fresnel transmits its
+// s and p components differently (t_s ≠ t_p, Born & Wolf §1.5.3), which turns the plane of
+// polarization of oblique rays toward the meridional plane — the effect that bends and splits the
+// isogyres of real conoscopic figures. By rotational symmetry s and p are the lens' eigen-
+// polarizations, so one traced profile τ_s(θ), τ_p(θ) (depth-0 path, absorption included) gives
+// every direction's Jones matrix; the condenser is the same lens reversed (reciprocity: equal
+// power transmissions). Amplitudes are relative to the axial ray, so the exposure reference
+// (Y = 1 on axis) is kept. Traced at 550 nm: the glass dispersion changes t_s/t_p by < 0.1 %
+// across the visible. Ghost paths (internal reflections, optics.lens_depth) leave the lens in
+// other directions and land elsewhere in the back focal plane; they are not part of this model.
+#include <vector>
+
+#include <glm/mat2x2.hpp>
+#include <glm/vec3.hpp>
+
+namespace pmsim {
+
+struct LensPolarizationTable {
+  static constexpr int kSamples = 256;
+  double max_sin = 0.999;          // table spans sin θ_air in [0, max_sin]
+  std::vector<double> tau_s, tau_p;  // relative amplitude transmissions at sin θ = max_sin·i/(kSamples−1)
+  // Real 2×2 Jones matrix of one lens for a ray along k_air, in transverse_basis(k_air).
+  glm::dmat2 jones(const glm::dvec3& k_air) const;
+};
+
+// Traced once per Fresnel model (cached). Throws InputError if the lens asset is missing.
+const LensPolarizationTable& lens_polarization_table(bool schlick);
+
+}  // namespace pmsim
