@@ -152,3 +152,22 @@ TEST(Stability, SectionsAndWedgesHaveNoNaNOrInf) {
   EXPECT_LT(img.xyz[1], 0.02);
   for (int x = 1; x < 8; ++x) EXPECT_GT(img.xyz[3 * x + 1], img.xyz[3 * (x - 1) + 1]) << "column " << x;
 }
+
+TEST(Pleochroism, BiotiteChangesColourInPlanePolarizedLightAsTheStageTurns) {
+  // Analyzer out: the light vibrating along the polarizer (E–W) samples the absorption of the
+  // crystal direction lying E–W. Biotite absorbs strongly for vibrations in the cleavage plane
+  // (β, γ: dark brown) and weakly across it (α: pale), so a section ⟂ (001) with the cleavage
+  // trace E–W is dark and turns pale at 90° (Nesse 2012, biotite).
+  Scene s = small_scene();
+  s.analyzer_in = false;
+  s.sample.mineral = "biotite";
+  s.sample.thickness_um = 30.0;
+  s.sample.x_axis = {0, 1, 0};  // α ⟂ cleavage, here N–S at stage 0
+  s.sample.z_axis = {1, 0, 0};  // γ in the cleavage plane, E–W
+  const glm::dvec3 dark = centre_xyz(ProgressiveRenderer::render(s, 1));
+  s.stage_deg = 90.0;
+  const glm::dvec3 pale = centre_xyz(ProgressiveRenderer::render(s, 1));
+  EXPECT_LT(dark.y, pale.y);
+  // A visible change: more than 10 CIEDE2000 between the two positions.
+  EXPECT_GT(ciede2000(lab_of(dark), lab_of(pale)), 10.0);
+}

@@ -1,0 +1,98 @@
+// The teaching-panel probes: spectrum, retardation and order at the cursor, and the figure's
+// description (sign, 2V, compensator rule).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/crystal/crystal.h"
+#include "core/io/input_error.h"
+#include "core/microscope/figure_info.h"
+#include "core/microscope/pixel_probe.h"
+
+using namespace pmsim;
+
+TEST(PixelProbe, PlateAt45ShowsItsRetardationAndSinSquaredSpectrum) {
+  Scene s;
+  s.sample.crystal = CrystalIndices{true, 1.540, 1.550};  // Δn = 0.010, non-dispersive
+  s.sample.optic_axis = {std::sqrt(0.5), std::sqrt(0.5), 0.0};
+  s.sample.thickness_um = 55.0;                            // Γ = 550 nm
+  const PixelProbe p = probe_pixel(s, 0.3, 0.7);
+  ASSERT_TRUE(p.lit);
+  ASSERT_EQ(p.wavelength_nm.size(), 81u);
+  EXPECT_DOUBLE_EQ(p.wavelength_nm.front(), 380.0);
+  EXPECT_DOUBLE_EQ(p.wavelength_nm.back(), 780.0);
+  // Γ = d·Δn at normal incidence (exact for the plate model).
+  EXPECT_NEAR(p.retardation_nm, 550.0, 1e-6);
+  EXPECT_NEAR(p.order, 1.0, 1e-8);
+  for (std::size_t i = 0; i < p.wavelength_nm.size(); ++i) {
+    const double want = std::pow(std::sin(std::numbers::pi * 550.0 / p.wavelength_nm[i]), 2);
+    // Fresnel loss at the faces (n 1.54–1.55 against the mounting medium) < 1e-4.
+    EXPECT_NEAR(p.transmission[i], want, 1e-3) << p.wavelength_nm[i];
+  }
+}
+
+TEST(PixelProbe, WedgeRetardationGrowsLeftToRightAndSectionsNameTheirMinerals) {
+  Scene w;
+  w.sample.type = SampleType::Wedge;
+  w.sample.crystal = CrystalIndices{true, 1.540, 1.550};
+  w.sample.thickness_um = 200.0;
+  // Thickness 0 at the left edge, 200 µm at the right: at x = 1/4 the plate is 50 µm, Γ = 500 nm.
+  EXPECT_NEAR(probe_pixel(w, 0.25, 0.5).retardation_nm, 500.0, 1e-6);
+  EXPECT_NEAR(probe_pixel(w, 0.0, 0.5).retardation_nm, 0.0, 1e-9);
+  Scene g;
+  g.sample.type = SampleType::Section;
+  g.sample.section = "granite";
+  const PixelProbe p = probe_pixel(g, 0.5, 0.5);
+  EXPECT_TRUE(p.mineral == "quartz" || p.mineral == "orthoclase" || p.mineral == "plagioclase" ||
+              p.mineral == "biotite" || p.mineral == "muscovite")
+      << p.mineral;
+}
+
+TEST(PixelProbe, OutsideTheConoscopicDiskIsUnlit) {
+  Scene s;
+  s.mode = ViewMode::Cono;
+  s.bertrand_in = true;
+  EXPECT_FALSE(probe_pixel(s, 0.01, 0.01).lit);
+  EXPECT_TRUE(probe_pixel(s, 0.5, 0.5).lit);
+}
+
+TEST(FigureInfo, UniaxialSignsAndTheGypsumRule) {
+  Scene s;
+  s.mode = ViewMode::Cono;
+  s.sample.optic_axis = {0, 0, 1};
+  s.sample.mineral = "calcite";
+  FigureInfo f = describe_figure(s);
+  EXPECT_EQ(f.kind, "uniaxial");
+  EXPECT_EQ(f.optic_sign, "negative");  // calcite: ne < no
+  EXPECT_EQ(f.orientation, "centred optic-axis figure");
+  s.sample.mineral = "quartz";
+  s.compensator = Compensator::Gypsum;
+  f = describe_figure(s);
+  EXPECT_EQ(f.optic_sign, "positive");
+  EXPECT_EQ(f.compensator.rfind("addition", 0), 0u) << f.compensator;  // addition in NE–SW first
+}
+
+TEST(FigureInfo, BiaxialTwoVFromTheIndices) {
+  Scene s;
+  s.sample.crystal = CrystalIndices{false, 1.5, 1.5, 1.5};
+  s.sample.crystal->nalpha = 1.60;
+  s.sample.crystal->nbeta = 1.61;
+  s.sample.crystal->ngamma = 1.64;
+  s.sample.x_axis = {1, 0, 0};
+  s.sample.z_axis = {0, 0, 1};
+  const FigureInfo f = describe_figure(s);
+  EXPECT_EQ(f.kind, "biaxial");
+  EXPECT_EQ(f.optic_sign, "positive");  // nγ − nβ > nβ − nα: Z is the acute bisectrix
+  // cos²Vz = nα²(nγ² − nβ²)/(nβ²(nγ² − nα²)) → 2Vz ≈ 61.0°
+  const double c2 = 1.60 * 1.60 * (1.64 * 1.64 - 1.61 * 1.61) / (1.61 * 1.61 * (1.64 * 1.64 - 1.60 * 1.60));
+  EXPECT_NEAR(f.two_v_deg, 2.0 * std::acos(std::sqrt(c2)) * 180.0 / std::numbers::pi, 1e-6);
+  EXPECT_EQ(f.orientation, "acute bisectrix figure");
+}
+
+TEST(FigureInfo, InvalidSceneIsAnInputError) {
+  Scene s;
+  s.sample.thickness_um = -3;
+  EXPECT_THROW(describe_figure(s), InputError);
+  EXPECT_THROW(probe_pixel(s, 0.5, 0.5), InputError);
+}
