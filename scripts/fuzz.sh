@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz, clang, -DPMSIM_FUZZ=ON: ASan + UBSan + coverage) and
+# runs each for a bounded time, starting from a seed corpus made from assets/ plus every input
+# already kept in tests/fuzz/regressions/<target>/. Every crash, oracle violation, leak or timeout
+# found is copied into tests/fuzz/regressions/<target>/, which the ordinary build replays as ctest
+# tests (reliability_fuzz_regressions_<target>).
+# usage: scripts/fuzz.sh [seconds per target (default 20)] [target...]   (default: all targets)
+# Build folder: build-fuzz (override PMSIM_FUZZ_BUILD). Exit 1 if anything was found.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-20}"
+shift || true
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(scene_parser scene_setting lens_parser material_parser mineral_parser trace_lens plate_jones)
+fi
+build="${PMSIM_FUZZ_BUILD:-$root/build-fuzz}"
+jobs="${PMSIM_JOBS:-$(nproc)}"
+CC="${CC:-clang}" CXX="${CXX:-clang++}" cmake -S "$root" -B "$build" -G Ninja \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPMSIM_FUZZ=ON -DPMSIM_BUILD_UI=OFF -DPMSIM_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" -j "$jobs" --target "${targets[@]/#/fuzz_}"
+
+export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export TMPDIR="$build/tmp"
+mkdir -p "$TMPDIR"
+found=0
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  artifacts="$build/artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  PMSIM_FUZZ_MAKE_SEEDS="$corpus" "$build/tests/fuzz/fuzz_$t"
+  regressions="$root/tests/fuzz/regressions/$t"
+  mkdir -p "$regressions"
+  before=$(ls "$artifacts" | wc -l)
+  # New corpus units go to the first folder only; regressions are read, never written.
+  set +e
+  "$build/tests/fuzz/fuzz_$t" "$corpus" "$regressions" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=4096 -artifact_prefix="$artifacts/" -print_final_stats=1 \
+    -close_fd_mask=1 2>"$build/fuzz_$t.log"
+  rc=$?
+  set -e
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$build/fuzz_$t.log" | grep -o '[0-9]*$' || echo "?")
+  cov=$(grep -o 'cov: [0-9]*' "$build/fuzz_$t.log" | tail -1 | grep -o '[0-9]*' || echo "?")
+  new=$(( $(ls "$artifacts" | wc -l) - before ))
+  echo "fuzz: $t: ${seconds} s, $execs inputs, coverage $cov edges, $new new finding(s), exit $rc"
+  if [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
+    found=1
+    for f in "$artifacts"/*; do
+      [ -e "$f" ] || continue
+      cp -n "$f" "$regressions/" && echo "fuzz: kept $regressions/$(basename "$f")"
+    done
+    grep -m3 -E 'ERROR|oracle|runtime error' "$build/fuzz_$t.log" || true
+  fi
+done
+exit $found

@@ -1,0 +1,164 @@
+// The progressive renderer cancelled and restarted while parameters change, as the UI does on
+// every slider move: a "UI" thread restarts with a new scene (and now and then an invalid one,
+// which must throw and leave the previous scene rendering), while a "display" thread takes
+// snapshots. Run under ThreadSanitizer by scripts/sanitize.sh; under ASan+UBSan and in the
+// normal build by ctest. Short by default; PMSIM_LONG_TESTS=1 restarts 100 000 times (soak,
+// scripts/soak.sh) and reports resident memory at start and end.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+
+#include "core/io/input_error.h"
+#include "core/render/progressive_renderer.h"
+
+namespace pmsim {
+namespace {
+
+bool long_tests() {
+  const char* e = std::getenv("PMSIM_LONG_TESTS");
+  return e && std::string(e) == "1";
+}
+
+// "VmRSS" (resident now) or "VmHWM" (peak resident) of this process, in KiB.
+long status_kib(const char* field) {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind(field, 0) == 0) return std::atol(line.c_str() + std::strlen(field) + 1);
+  return -1;
+}
+
+// A small scene near what a student changes: stage, polars, mode, mineral, thickness, size.
+Scene random_scene(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Scene s;
+  s.render.width = 8 + int(u(rng) * 16);
+  s.render.height = 8 + int(u(rng) * 16);
+  s.render.tolerance_de2000 = 2.0;
+  s.stage_deg = 360 * u(rng);
+  s.analyzer_deg = u(rng) < 0.8 ? 90.0 : 180 * u(rng);
+  s.analyzer_in = u(rng) < 0.9;
+  s.mode = u(rng) < 0.3 ? ViewMode::Cono : ViewMode::Ortho;
+  s.bertrand_in = s.mode == ViewMode::Cono;
+  static const char* minerals[] = {"quartz", "calcite", "muscovite", "biotite", "gypsum", "olivine"};
+  s.sample.mineral = minerals[int(u(rng) * 6) % 6];
+  s.sample.thickness_um = 5 + 100 * u(rng);
+  s.sample.optic_axis = {u(rng) - 0.5, u(rng) - 0.5, u(rng) + 0.1};
+  s.compensator = u(rng) < 0.2 ? Compensator::Gypsum : Compensator::None;
+  if (u(rng) < 0.2) s.render.single_wavelength_nm = 400 + 300 * u(rng);
+  if (u(rng) < 0.3) s.render.wavelengths = 8;
+  return s;
+}
+
+void expect_consistent(const RenderImage& img) {
+  ASSERT_EQ(img.rgb.size(), size_t(img.width) * img.height * 3);
+  for (float v : img.rgb) ASSERT_TRUE(std::isfinite(v)) << "NaN/Inf in a snapshot";
+}
+
+void restart_storm(int restarts, bool report_memory) {
+  ProgressiveRenderer renderer(2);
+  std::mt19937 rng(7);
+  std::atomic<bool> done{false};
+  std::atomic<long> snapshots{0};
+  // The display thread: snapshots as fast as a UI would upload textures.
+  std::thread display([&] {
+    RenderImage img;
+    while (!done.load()) {
+      if (renderer.snapshot(img)) {
+        expect_consistent(img);
+        ++snapshots;
+      }
+      std::this_thread::yield();
+    }
+  });
+  const long rss_start = status_kib("VmRSS");
+  long rss_warm = rss_start;
+  int rejected = 0;
+  for (int i = 0; i < restarts; ++i) {
+    if (i == std::min(1000, restarts / 10)) rss_warm = status_kib("VmRSS");
+    if (i % 97 == 13) {
+      Scene bad = random_scene(rng);
+      bad.objective.na = 1.5;  // invalid: must throw and keep the previous scene rendering
+      try {
+        renderer.restart(bad);
+        ADD_FAILURE() << "an invalid scene was accepted";
+      } catch (const InputError&) {
+        ++rejected;
+      }
+      continue;
+    }
+    renderer.restart(random_scene(rng));
+    if (i % 50 == 0) renderer.wait(0.002);  // let some renders finish passes
+    if (i % 211 == 0) renderer.cancel();
+  }
+  // The last scene must still render to the end after the storm.
+  Scene last = random_scene(rng);
+  last.render.wavelengths = 8;
+  renderer.restart(last);
+  EXPECT_TRUE(renderer.wait(120.0)) << "the final render did not finish";
+  done = true;
+  display.join();
+  RenderImage img;
+  ASSERT_TRUE(renderer.snapshot(img));
+  expect_consistent(img);
+  EXPECT_EQ(img.width, last.render.width);
+  EXPECT_EQ(img.height, last.render.height);
+  EXPECT_GT(rejected, 0);
+  const long rss_end = status_kib("VmRSS");
+  if (report_memory) {
+    std::printf("restarts %d, snapshots %ld, rejected %d\n", restarts, snapshots.load(), rejected);
+    std::printf("RSS start %ld KiB, after warm-up %ld KiB, end %ld KiB, peak (VmHWM) %ld KiB\n",
+                rss_start, rss_warm, rss_end, status_kib("VmHWM"));
+  }
+  // Flat memory: after warm-up (caches and TBB pools filled) a restart must not keep anything.
+  // 64 MiB of slack is far below what 10⁵ leaked images (≥ 1.5 KiB each) would need.
+  if (restarts >= 10000) EXPECT_LT(rss_end - rss_warm, 64 * 1024) << "memory grows with restarts";
+}
+
+TEST(RendererRestart, RestartStormWhileSnapshottingShort) { restart_storm(300, true); }
+
+TEST(RendererRestart, RestartStormLong) {
+  if (!long_tests()) GTEST_SKIP() << "set PMSIM_LONG_TESTS=1 for 100 000 restarts";
+  const char* n = std::getenv("PMSIM_SOAK_RESTARTS");  // scripts/soak.sh --restarts N
+  restart_storm(n && *n ? std::atoi(n) : 100000, true);
+}
+
+TEST(RendererRestart, DestroyingARunningRendererStopsIt) {
+  std::mt19937 rng(3);
+  for (int i = 0; i < 30; ++i) {
+    ProgressiveRenderer r(2);
+    Scene s = random_scene(rng);
+    s.render.width = 64;
+    s.render.height = 64;
+    r.restart(s);
+    if (i % 2) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }  // ~ProgressiveRenderer joins the worker; TSan/ASan check no use after free
+}
+
+TEST(RendererRestart, AnInvalidSceneKeepsTheLastGoodImage) {
+  ProgressiveRenderer r(2);
+  Scene good;
+  good.render.width = good.render.height = 16;
+  good.render.wavelengths = 8;
+  r.restart(good);
+  ASSERT_TRUE(r.wait(60.0));
+  Scene bad = good;
+  bad.sample.thickness_um = -1;
+  EXPECT_THROW(r.restart(bad), InputError);
+  RenderImage img;
+  ASSERT_TRUE(r.snapshot(img));
+  EXPECT_EQ(img.width, 16);
+  expect_consistent(img);
+  EXPECT_TRUE(r.wait(1.0)) << "the good scene's converged state was lost";
+}
+
+}  // namespace
+}  // namespace pmsim
