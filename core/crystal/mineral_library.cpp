@@ -51,19 +51,32 @@ struct Reader {
     if (!std::isfinite(d)) fail(path, v, "expected a finite number");
     return d;
   }
+  // Every nm of the visible range: a pole of a dispersion formula (C or E near λ²) is a narrow
+  // feature that three probe wavelengths miss, and the renderer samples any λ in 380–780 nm.
   double index_at(const IndexDispersion& d, const std::string& path, const json& v) const {
-    for (double wl : {400.0, 589.3, 700.0}) {
+    for (double wl = 380.0; wl <= 780.0; wl += 1.0) {
       const double n = d.n(wl);
       if (!std::isfinite(n) || !(n > 1.0) || n > 5.0)
         fail(path, v, "refractive index outside (1, 5] at " + std::to_string(wl) + " nm");
     }
     return d.n(589.3);
   }
+  // Typos must not pass silently: a misspelt optional key would drop its data.
+  void only_keys(const json& obj, const std::string& prefix,
+                 std::initializer_list<const char*> known) const {
+    if (!obj.is_object()) return;
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      bool ok = false;
+      for (const char* k : known) ok |= it.key() == k;
+      if (!ok) fail(prefix + it.key(), it.value(), "unknown key");
+    }
+  }
   IndexDispersion dispersion(const json& v, const std::string& path) const {
     IndexDispersion d;
     if (v.is_number()) {
       d.A = number(v, path);
     } else if (v.is_object()) {
+      only_keys(v, path + ".", {"model", "A", "B", "C", "D", "E", "n", "source"});
       const json& m = need(v, "model", path + ".model");
       if (!m.is_string()) fail(path + ".model", m, "expected a string");
       const std::string model = m.get<std::string>();
@@ -106,11 +119,15 @@ Crystal load_mineral_file(const std::string& path) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double (1e400)
     throw InputError(path, "", "", std::string("invalid JSON: ") + e.what());
+  } catch (const std::exception& e) {  // read errors, e.g. a folder given as the file
+    throw InputError(path, "", "", std::string("cannot read the mineral file: ") + e.what());
   }
   const Reader r{path};
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
+  r.only_keys(j, "", {"name", "symmetry", "source", "indices", "absorption", "rotatory_power",
+                      "optic_angle_2vz_deg", "pleochroism", "note", "description"});
   const json& name_v = r.need(j, "name", "name");
   if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
   const json& src_v = r.need(j, "source", "source");
@@ -123,16 +140,18 @@ Crystal load_mineral_file(const std::string& path) {
   Crystal c;
   std::vector<std::string> axis_keys;
   if (sym == "uniaxial") {
+    r.only_keys(idx, "indices.", {"no", "ne"});
     const auto no = r.dispersion(r.need(idx, "no", "indices.no"), "indices.no");
     const auto ne = r.dispersion(r.need(idx, "ne", "indices.ne"), "indices.ne");
     c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Uniaxial, no, no, ne,
                       src_v.get<std::string>());
     axis_keys = {"o", "o", "e"};
   } else if (sym == "biaxial") {
+    r.only_keys(idx, "indices.", {"nalpha", "nbeta", "ngamma"});
     const auto a = r.dispersion(r.need(idx, "nalpha", "indices.nalpha"), "indices.nalpha");
     const auto b = r.dispersion(r.need(idx, "nbeta", "indices.nbeta"), "indices.nbeta");
     const auto g = r.dispersion(r.need(idx, "ngamma", "indices.ngamma"), "indices.ngamma");
-    for (double wl : {400.0, 589.3, 700.0}) {
+    for (double wl = 380.0; wl <= 780.0; wl += 1.0) {
       if (!(a.n(wl) <= b.n(wl) && b.n(wl) <= g.n(wl)))
         r.fail("indices", idx, "biaxial indices must satisfy nalpha <= nbeta <= ngamma");
     }
@@ -140,6 +159,7 @@ Crystal load_mineral_file(const std::string& path) {
                       src_v.get<std::string>());
     axis_keys = {"alpha", "beta", "gamma"};
   } else if (sym == "isotropic") {
+    r.only_keys(idx, "indices.", {"n"});
     const auto n = r.dispersion(r.need(idx, "n", "indices.n"), "indices.n");
     c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Isotropic, n, n, n,
                       src_v.get<std::string>());
@@ -151,6 +171,7 @@ Crystal load_mineral_file(const std::string& path) {
   if (j.contains("absorption")) {
     const json& ab = j["absorption"];
     if (!ab.is_object()) r.fail("absorption", ab, "expected an object");
+    r.only_keys(ab, "absorption.", {"source", "reference_thickness_um", "wavelength_nm", "transmittance"});
     const double d_um = r.number(r.need(ab, "reference_thickness_um", "absorption.reference_thickness_um"),
                                  "absorption.reference_thickness_um");
     if (!(d_um > 0.0)) r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
@@ -158,6 +179,9 @@ Crystal load_mineral_file(const std::string& path) {
     for (size_t i = 1; i < wl.size(); ++i)
       if (!(wl[i] > wl[i - 1])) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "must increase");
     const json& tr = r.need(ab, "transmittance", "absorption.transmittance");
+    if (sym == "uniaxial") r.only_keys(tr, "absorption.transmittance.", {"o", "e"});
+    else if (sym == "biaxial") r.only_keys(tr, "absorption.transmittance.", {"alpha", "beta", "gamma"});
+    else r.only_keys(tr, "absorption.transmittance.", {"n"});
     AbsorptionTable t[3];
     for (int k = 0; k < 3; ++k) {
       const std::string key = "absorption.transmittance." + axis_keys[k];
@@ -174,6 +198,8 @@ Crystal load_mineral_file(const std::string& path) {
 
   if (j.contains("rotatory_power")) {
     const json& rp = j["rotatory_power"];
+    if (!rp.is_object()) r.fail("rotatory_power", rp, "expected an object");
+    r.only_keys(rp, "rotatory_power.", {"source", "A_deg_um2_per_mm", "lambda0_um", "handedness"});
     const double a_deg = r.number(r.need(rp, "A_deg_um2_per_mm", "rotatory_power.A_deg_um2_per_mm"),
                                   "rotatory_power.A_deg_um2_per_mm");
     const double l0 = r.number(r.need(rp, "lambda0_um", "rotatory_power.lambda0_um"), "rotatory_power.lambda0_um");

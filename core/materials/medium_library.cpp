@@ -79,6 +79,10 @@ class Reader {
   const json& root_;
 };
 
+// No transparent medium of the visible range has an index above 5 (diamond 2.42, rutile 2.9);
+// larger values are typos (the same bound as the crystal files').
+constexpr double kMaxIndex = 5.0;
+
 // Keys a material file may hold; anything else is a typo and reported as such.
 const std::set<std::string> kKnownKeys = {
     "name", "source", "model", "n", "B", "C_um2", "A", "B_nm2", "wavelength_range_nm",
@@ -94,6 +98,8 @@ Medium load_medium_file(const std::string& path) {
     root = json::parse(in);
   } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
+  } catch (const std::exception& e) {  // read errors, e.g. a folder given as the file
+    throw InputError(path, "", "", std::string("cannot read the material file: ") + e.what());
   }
   if (!root.is_object()) throw InputError(path, "", "", "expected a JSON object");
   const Reader r(path, root);
@@ -107,9 +113,11 @@ Medium load_medium_file(const std::string& path) {
   const bool gas = lower(name) == "air" || lower(name) == "vacuum";
 
   Medium m;
+  std::vector<double> sellmeier_b, sellmeier_c;
   if (model == "constant") {
     const double n = r.number("n");
     if (gas ? n < 1.0 : n <= 1.0) r.fail("n", root["n"], gas ? "must be >= 1" : "must be > 1");
+    if (n > kMaxIndex) r.fail("n", root["n"], "must be <= 5 (no transparent medium has more)");
     m = Medium::constant(name, n);
   } else if (model == "sellmeier3") {
     const std::vector<double> B = r.numbers("B", 3, 3);
@@ -118,6 +126,8 @@ Medium load_medium_file(const std::string& path) {
       if (C[i] < 0.0) r.fail("C_um2[" + std::to_string(i) + "]", root["C_um2"][i], "must be >= 0");
     }
     m = Medium::sellmeier(name, B.data(), C.data());
+    sellmeier_c = C;
+    sellmeier_b = B;
   } else if (model == "cauchy") {
     m = Medium::cauchy(name, r.number("A"), r.number("B_nm2"));
   } else {
@@ -134,23 +144,44 @@ Medium load_medium_file(const std::string& path) {
     r.fail("wavelength_range_nm", json(), "missing required key (the formula's validity range)");
   }
 
-  // The formula must give a finite index > 1 wherever it claims to be valid (a pole of the
-  // Sellmeier sum inside the range, or a wrong sign, shows up here); sampled each nm of the
-  // visible range and at the range ends.
+  // A Sellmeier term B·λ²/(λ² − C) has a pole at λ = √C: inside the claimed range the index is
+  // infinite there and imaginary just beyond, a feature too narrow for sampling to find.
+  // Checked after the visible probes, which name the model for a pole where it matters most.
+  auto check_poles = [&] {
+    for (std::size_t i = 0; i < sellmeier_c.size(); ++i) {
+      const double pole_nm = std::sqrt(sellmeier_c[i]) * 1e3;
+      if (sellmeier_b[i] != 0.0 && pole_nm >= m.min_wavelength_nm() && pole_nm <= m.max_wavelength_nm()) {
+        r.fail("C_um2[" + std::to_string(i) + "]", root["C_um2"][i],
+               "puts a pole of the Sellmeier formula at " + std::to_string(pole_nm) +
+                   " nm, inside wavelength_range_nm");
+      }
+    }
+  };
+  // The formula must give a finite index in (1, 5] wherever it claims to be valid (a wrong sign
+  // shows up here); sampled each nm of the visible range, at the range ends and at 256
+  // log-spaced wavelengths across the range.
   {
     std::vector<double> probe = {m.min_wavelength_nm()};
     if (std::isfinite(m.max_wavelength_nm())) probe.push_back(m.max_wavelength_nm());
     for (double nm = 380.0; nm <= 780.0; nm += 1.0) {
       if (nm >= m.min_wavelength_nm() && nm <= m.max_wavelength_nm()) probe.push_back(nm);
     }
-    for (double nm : probe) {
-      if (nm <= 0.0) continue;
+    const std::size_t visible_probes = probe.size();
+    if (m.min_wavelength_nm() > 0.0 && std::isfinite(m.max_wavelength_nm())) {
+      const double ratio = m.max_wavelength_nm() / m.min_wavelength_nm();
+      for (int k = 1; k < 256; ++k) probe.push_back(m.min_wavelength_nm() * std::pow(ratio, k / 256.0));
+    }
+    for (std::size_t p = 0; p < probe.size(); ++p) {
+      const double nm = probe[p];
+      if (p == visible_probes) check_poles();
+      if (nm <= 0.0 || nm < m.min_wavelength_nm() || nm > m.max_wavelength_nm()) continue;
       const double n = m.n(nm);
-      if (!std::isfinite(n) || (gas ? n < 1.0 : n <= 1.0)) {
+      if (!std::isfinite(n) || (gas ? n < 1.0 : n <= 1.0) || n > kMaxIndex) {
         r.fail("model", root["model"], "gives n = " + std::to_string(n) + " at " +
                                            std::to_string(nm) + " nm");
       }
     }
+    check_poles();
   }
 
   if (root.contains("attenuation_per_mm") && root.contains("internal_transmittance")) {
