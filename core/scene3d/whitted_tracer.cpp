@@ -175,7 +175,9 @@ glm::dvec3 WhittedTracer::trace(const glm::dvec3& origin, const glm::dvec3& dir,
 
 void WhittedTracer::radiance(const glm::dvec3& origin, const glm::dvec3& dir, int depth, int ch,
                              const glm::dvec3* pol, double w, Acc acc) const {
-  if (!(w > 0.0)) return;
+  // Branches carrying less than 1e-9 of the camera ray's weight are cut: a Whitted tree with
+  // TIR splitting grows as 2^depth, and what is cut is below any displayable difference.
+  if (!(w > 1e-9)) return;
   Scene3dHit hit;
   if (!world_.intersect(origin, dir, eps_, std::numeric_limits<double>::infinity(), hit)) {
     if (ch >= 0) {
