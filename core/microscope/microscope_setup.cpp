@@ -301,20 +301,20 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
   }
   S->pixel_offset[static_cast<std::size_t>(W) * H] = static_cast<int>(S->refs.size());
 
-  // Plate model: modal unless the scene asks for the exact Jones matrix per wavelength or a
-  // crystal is optically active (the modal fit carries linear eigenmodes only).
+  // Plate model: modal unless the scene asks for the exact Jones matrix per wavelength. The modal
+  // fit carries linear eigenmodes only; optical activity makes them elliptical near the optic
+  // axis, so there (see the criterion below) units of optically active crystals use the exact
+  // Jones matrix per band.
   bool active = false;
   for (const OpticalDomain& d : S->domains)
     if (d.crystal && d.crystal->optically_active()) active = true;
   const std::string& strat = scene.render.strategy;
   const bool single = scene.render.single_wavelength_nm > 0;
-  S->plate_model = (strat == "exact" || (strat == "auto" && active) || single) ? PlateModel::Exact
-                                                                                : PlateModel::Modal;
+  const bool hybrid = strat == "auto" && active && !single;
+  S->plate_model = (strat == "exact" || single) ? PlateModel::Exact : PlateModel::Modal;
   report << "; plate: "
          << (S->plate_model == PlateModel::Exact
-                 ? (single ? "exact Jones matrix (single wavelength)"
-                           : active && strat == "auto" ? "exact Jones matrix per wavelength (optically active crystal)"
-                                                       : "exact Jones matrix per wavelength")
+                 ? (single ? "exact Jones matrix (single wavelength)" : "exact Jones matrix per wavelength")
                  : "modal fit (3 mode solutions per direction, band-averaged interference)");
   // Lenses. In parallel light every ray runs along the axis, where the two models agree exactly
   // (the physical one is normalised to its axial transmission), so only oblique light can need
@@ -345,6 +345,7 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     S->dirs_per_unit = S->cone_dirs.empty() ? 1 : static_cast<int>(S->cone_dirs.size());
     const int D = S->dirs_per_unit;
     S->terms.resize(S->units.size() * D);
+    S->unit_exact.assign(S->units.size(), 0);
     const TrainState train = make_train(scene, S->compensator, 550.0);  // its directions only
     // Anchors prepared once per domain.
     std::vector<std::array<PreparedPlate, 3>> anchors(S->domains.size());
@@ -372,12 +373,26 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                             }
                             ModalFit fit;
                             fit.fit(anchors[unit.domain].data(), S->dir(unit, d));
+                            if (hybrid && dom.crystal->optically_active()) {
+                              // Elliptical modes have ellipticity ≈ (rotation)/(linear phase);
+                              // the linear model's intensity error is its square: keep it below
+                              // ~1e-3 (rotation < linear phase / 30) or go exact.
+                              const double rot = std::fabs(dom.crystal->rotatory_power_rad_per_um(400.0)) *
+                                                 unit.thickness_um;
+                              const double lin = 2.0 * std::numbers::pi * fit.retardation_nm(400.0) *
+                                                 unit.thickness_um / dom.thickness_um / 400.0;
+                              if (lin < 30.0 * rot) S->unit_exact[u] = 1;
+                            }
                             S->terms[u * D + d] = make_modal_terms(
                                 fit, train, unit.thickness_um / dom.thickness_um, pc, po);
                           }
                         }
                       });
     if (stop) return nullptr;
+    const auto n_exact = std::count(S->unit_exact.begin(), S->unit_exact.end(), 1);
+    if (n_exact > 0)
+      report << "; exact Jones matrix for " << n_exact << " of " << S->units.size()
+             << " evaluations near the optic axis of the optically active crystal";
   }
   S->model_report = report.str();
   return S;

@@ -57,6 +57,10 @@ struct MicroscopeSetup {
   PlateModel plate_model = PlateModel::Modal;
   std::vector<ModalTerms> terms;                 // modal: unit u, direction d at u*dirs_per_unit+d
   int dirs_per_unit = 1;
+  std::vector<char> unit_exact;                  // modal model: 1 = this unit needs the exact Jones matrix
+  bool needs_exact(int unit) const {
+    return plate_model == PlateModel::Exact || (!unit_exact.empty() && unit_exact[unit]);
+  }
   std::string model_report;
   const LensPolarizationTable* lenses = nullptr;  // physical lens model; null = ideal
 

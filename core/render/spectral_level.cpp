@@ -52,7 +52,9 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
     L.anchor_w.push_back(w);
     L.anchor_dw.push_back(dw);
   }
-  if (S.plate_model == PlateModel::Exact) {
+  const bool any_exact = S.plate_model == PlateModel::Exact ||
+                         std::find(S.unit_exact.begin(), S.unit_exact.end(), 1) != S.unit_exact.end();
+  if (any_exact) {
     L.prepared.resize(L.n);
     for (int i = 0; i < L.n; ++i)
       for (std::size_t d = 0; d < S.domains.size(); ++d)
@@ -133,7 +135,7 @@ glm::dvec3 modal_unit_xyz(const MicroscopeSetup& S, const SpectralLevel& L, int 
 }  // namespace
 
 glm::dvec3 evaluate_unit(const MicroscopeSetup& S, const SpectralLevel& L, int u) {
-  if (S.plate_model == PlateModel::Modal) return modal_unit_xyz(S, L, u);
+  if (!S.needs_exact(u)) return modal_unit_xyz(S, L, u);
   glm::dvec3 xyz(0.0);
   for (int i = 0; i < L.n; ++i) xyz += L.weight[i] * unit_transmission(S, L, u, i);
   return xyz;
