@@ -13,7 +13,11 @@
 
 namespace pmsim {
 
-enum class ViewMode { Ortho, Cono };                       // mode: ortho|cono
+// mode: ortho|cono. Setting mode (a scene file without a "bertrand" key, or --set mode=…) moves the
+// Bertrand lens with it — cono: in, ortho: out — as the UI's one-click switch does; "bertrand" can
+// then be flipped on its own (cono + bertrand out: the image plane lit by the convergent cone;
+// ortho + bertrand in: the back focal plane in parallel light, a small bright spot).
+enum class ViewMode { Ortho, Cono };
 enum class SampleType { Plate, Wedge, Section };           // sample.type: plate|wedge|section
 enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
 // illuminant: D65|A is pmsim::Illuminant (core/spectrum/illuminant.h)
@@ -53,7 +57,7 @@ struct RenderSettings {
   int wavelengths = 0;                         // render.wavelengths (0: until converged)
   double single_wavelength_nm = 0.0;           // render.single_wavelength_nm (0: white light)
   double tolerance_de2000 = 0.5;               // render.tolerance (stop when the estimate is below)
-  std::string strategy = "auto";               // render.strategy (see core/render)
+  std::string strategy = "auto";               // render.strategy: auto|modal|exact (core/microscope/scene_check.h)
 };
 
 struct OpticsSettings {
