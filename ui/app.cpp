@@ -203,12 +203,11 @@ void App::draw_field(Scene& edit, bool& changed) {
   const Layout& l = layout_;
   ImGui::SetNextWindowPos(ImVec2(l.view.x, l.view.y));
   ImGui::SetNextWindowSize(ImVec2(l.view.w, l.view.h));
-  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.22f, 0.22f, 0.23f, 1.0f));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   ImGui::Begin("##field", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoScrollWithMouse);
+                   ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoBackground);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 p0(l.field.x, l.field.y), p1(l.field.x + l.field.w, l.field.y + l.field.h);
   const float r = l.field_radius();
@@ -269,7 +268,6 @@ void App::draw_field(Scene& edit, bool& changed) {
   }
   ImGui::End();
   ImGui::PopStyleVar();
-  ImGui::PopStyleColor();
 }
 
 void App::draw_status() {

@@ -30,6 +30,9 @@ bool GlFunctions::load(GlProcLoader loader, const char** missing) {
   get(ClearColor, "glClearColor");
   get(Clear, "glClear");
   get(Finish, "glFinish");
+  get(Scissor, "glScissor");
+  get(Enable, "glEnable");
+  get(Disable, "glDisable");
   get(GetString, "glGetString");
   get(GetError, "glGetError");
   return ok;

@@ -28,6 +28,9 @@ struct GlFunctions {
   PFNGLCLEARCOLORPROC ClearColor = nullptr;
   PFNGLCLEARPROC Clear = nullptr;
   PFNGLFINISHPROC Finish = nullptr;
+  PFNGLSCISSORPROC Scissor = nullptr;
+  PFNGLENABLEPROC Enable = nullptr;
+  PFNGLDISABLEPROC Disable = nullptr;
   PFNGLGETSTRINGPROC GetString = nullptr;
   PFNGLGETERRORPROC GetError = nullptr;
 

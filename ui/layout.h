@@ -22,4 +22,10 @@ struct Layout {
 
 Layout compute_layout(int window_width, int window_height);
 
+// Background colours (sRGB-encoded, as ImGui colours are). The drivers clear the framebuffer to
+// them and the windows draw no background of their own: with software OpenGL a clear is a
+// memset, a window background is a blended quad over a million pixels.
+constexpr float kPanelBackground[3] = {0.06f, 0.06f, 0.06f};
+constexpr float kViewBackground[3] = {0.22f, 0.22f, 0.23f};
+
 }  // namespace pmsim::ui

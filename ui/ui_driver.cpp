@@ -31,6 +31,7 @@ double FrameTimes::fps() const {
 void setup_imgui_style() {
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
+  style.Colors[ImGuiCol_WindowBg].w = 0.0f;  // the drivers clear to the panel colour instead
   style.WindowRounding = 0;
   style.FrameRounding = 2;
   style.ItemSpacing = ImVec2(6, 5);
@@ -111,6 +112,22 @@ void UiDriver::apply_injected_input() {
   }
 }
 
+void UiDriver::clear_background() {
+  GlFunctions& g = gl();
+  int fb_w = width_, fb_h = height_;
+  framebuffer_size(fb_w, fb_h);
+  g.ClearColor(kPanelBackground[0], kPanelBackground[1], kPanelBackground[2], 1.0f);
+  g.Clear(GL_COLOR_BUFFER_BIT);
+  const Rect& v = app_->layout().view;
+  const double sx = static_cast<double>(fb_w) / width_, sy = static_cast<double>(fb_h) / height_;
+  g.Enable(GL_SCISSOR_TEST);
+  g.Scissor(static_cast<int>(v.x * sx), static_cast<int>(fb_h - (v.y + v.h) * sy),
+            static_cast<int>(v.w * sx + 0.5), static_cast<int>(v.h * sy + 0.5));
+  g.ClearColor(kViewBackground[0], kViewBackground[1], kViewBackground[2], 1.0f);
+  g.Clear(GL_COLOR_BUFFER_BIT);
+  g.Disable(GL_SCISSOR_TEST);
+}
+
 bool UiDriver::frame() {
   const auto t0 = std::chrono::steady_clock::now();
   ImGui::SetCurrentContext(imgui_);
@@ -120,9 +137,7 @@ bool UiDriver::frame() {
   app_->frame();
   ImGui::Render();
   bind_target();
-  GlFunctions& g = gl();
-  g.ClearColor(0.1f, 0.1f, 0.1f, 1.0f);
-  g.Clear(GL_COLOR_BUFFER_BIT);
+  clear_background();
   backend_.render(ImGui::GetDrawData());
   if (auto path = app_->take_window_screenshot_request()) {
     const WindowPixels px = read_pixels();

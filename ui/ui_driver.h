@@ -60,6 +60,7 @@ class UiDriver {
   virtual bool begin_frame() = 0;       // events, platform new frame (DisplaySize, DeltaTime)
   virtual void bind_target() = 0;       // framebuffer to draw into
   virtual void end_frame() = 0;         // swap or finish
+  virtual void framebuffer_size(int& w, int& h) const { w = width_, h = height_; }
 
   int width_ = 0, height_ = 0;
   ImGuiGlBackend backend_;
@@ -68,6 +69,7 @@ class UiDriver {
 
  private:
   void apply_injected_input();
+  void clear_background();
   FrameTimes times_;
   bool mouse_injected_ = false;
   float mouse_x_ = 0, mouse_y_ = 0;

@@ -22,6 +22,7 @@ class WindowDriver : public UiDriver {
   bool begin_frame() override;
   void bind_target() override;
   void end_frame() override;
+  void framebuffer_size(int& w, int& h) const override { w = fb_width_, h = fb_height_; }
 
  private:
   WindowDriver() = default;
