@@ -2,10 +2,13 @@
 // Private to the App: what the teaching panels keep between frames, so the core is asked again
 // only when the scene or the probed point changes.
 #include <cstdint>
+#include <future>
 #include <string>
 #include <vector>
 
+#include "core/microscope/figure_info.h"
 #include "core/microscope/pixel_probe.h"
+#include "core/spectrum/illuminant.h"
 #include "ui/app.h"
 
 namespace pmsim::ui {
@@ -16,6 +19,19 @@ struct App::Teaching {
   std::uint64_t probe_generation = ~0ull;
   float probe_x = -1, probe_y = -1;
   std::vector<float> spectrum;  // probe.transmission as floats for the plot
+
+  FigureInfo figure;
+  std::string figure_error;
+  std::uint64_t figure_generation = ~0ull;
+
+  // The Michel-Lévy chart: one row of colours per illuminant, computed off the UI thread.
+  static constexpr double kChartMaxNm = 1800.0;
+  static constexpr int kChartColumns = 720;
+  LinearTexture chart;
+  Illuminant chart_illuminant = Illuminant::D65;
+  bool chart_valid = false;
+  std::future<std::vector<float>> chart_job;
+  Illuminant chart_job_illuminant = Illuminant::D65;
 };
 
 }  // namespace pmsim::ui
