@@ -130,7 +130,16 @@ int run(int argc, char** argv) {
     throw InputError("", "--ledge", a["--ledge"], "expected stop");
 
   const pmsim::Lens lens(pmsim::load_lens_spec(a["--lens"]));
-  const pmsim::LensMedia media = lens.media(in.wavelength_nm);
+  // The model covers the visible range only (the paper's 380–780 nm); outside it the glass data
+  // may also be missing, which Medium::n reports as std::out_of_range.
+  if (in.wavelength_nm < 380.0 || in.wavelength_nm > 780.0)
+    throw InputError("", "--wavelength-nm", a["--wavelength-nm"], "must lie in 380-780 nm");
+  pmsim::LensMedia media;
+  try {
+    media = lens.media(in.wavelength_nm);
+  } catch (const std::out_of_range& e) {
+    throw InputError("", "--wavelength-nm", a["--wavelength-nm"], e.what());
+  }
   if (!std::isfinite(media.n_glass) || !(media.n_glass > 0) || !std::isfinite(media.n_medium))
     throw InputError("", "--wavelength-nm", a["--wavelength-nm"], "no refractive index there");
   pmsim::LensBundle b;

@@ -132,6 +132,10 @@ TEST(PmsimTraceCli, BadInputNamesTheKeyExitsTwoAndWritesNothing) {
       {"--lens '" + bad_glass.string() + "'" + kRay, "glass"},
       {"--lens '" + disagree.string() + "'" + kRay, "ledge_mm"},
       {"--lens /nonexistent/lens.json" + std::string(kRay), "/nonexistent/lens.json"},
+      // The model covers 380–780 nm; 200 nm is also outside N-BK7's Sellmeier data.
+      {good_lens + " --origin 0,0,-10 --dir 0,0,1 --pol 1,0,0 --wavelength-nm 200", "--wavelength-nm"},
+      {good_lens + " --origin 0,0,-10 --dir 0,0,1 --pol 1,0,0 --wavelength-nm 781", "--wavelength-nm"},
+      {"--lens /tmp" + std::string(kRay), "/tmp"},  // a folder given as the lens file
   };
   for (const Case& c : cases) {
     const CliResult r = run(c.args);

@@ -107,8 +107,12 @@ LensSpec load_lens_spec(const std::string& path) {
   json j;
   try {
     j = json::parse(f);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for numbers beyond double (1e400)
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
+  } catch (const std::exception& e) {
+    // e.g. a folder given as the file: the stream opens but reading fails
+    throw InputError(path, "", "", std::string("cannot read the lens file: ") + e.what());
   }
   return lens_spec_from_json(j, path);
 }
