@@ -1,5 +1,5 @@
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
-//             [--no-throughput]
+//             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR]
 // Renders the bench scenes with every strategy, measures wall time and per-pixel CIEDE2000
 // against cached converged references, prints the table and the issue-5 targets, and writes JSON
 // rows, docs-ready markdown (frontier.md) and the frontier plot (frontier.png) into --out-dir.
@@ -17,7 +17,8 @@ namespace {
 
 void usage(std::ostream& o) {
   o << "usage: pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N]\n"
-       "                   [--cache-dir DIR] [--no-throughput]\n";
+       "                   [--cache-dir DIR] [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR]\n"
+       "                   [--images DIR]\n";
 }
 
 // <build>/bench-cache next to the app folder of this executable.
@@ -56,6 +57,9 @@ int main(int argc, char** argv) {
       else if (a == "--json") json_path = value();
       else if (a == "--out-dir") out_dir = value();
       else if (a == "--cache-dir") opt.cache_dir = value();
+      else if (a == "--scene") opt.scene_filter = value();
+      else if (a == "--strategy") opt.strategy_filter = value();
+      else if (a == "--images") opt.images_dir = value();
       else if (a == "--size") {
         opt.size = parse_int(a, value());
         if (opt.size < 8 || opt.size > 4096) throw pmsim::InputError("", a, std::to_string(opt.size), "must be in 8…4096");

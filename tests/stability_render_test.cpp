@@ -82,8 +82,9 @@ TEST(StabilityRender, HardScenesGiveFiniteBoundedImages) {
       const Stats st = stats(img, s.illuminant);
       ASSERT_TRUE(st.finite) << name;
       // Passive optics: no pixel brighter than the exposure reference Y = 1 (+1 % for the
-      // band quadrature of the weights) and none negative.
-      EXPECT_GE(st.min_y, 0.0) << name;
+      // band quadrature of the weights) and none negative beyond the rounding of the modal sum
+      // C0 + Cφ·cos φ + … of O(1) terms that cancel on a dark isogyre (1e-12).
+      EXPECT_GE(st.min_y, -1e-12) << name;
       EXPECT_LE(st.max_y, 1.01) << name;
     }
 }

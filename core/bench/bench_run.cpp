@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -11,7 +12,9 @@
 #include "core/bench/bench_strategy.h"
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
+#include "core/io/image_file.h"
 #include "core/spectrum/cie.h"
+#include "core/spectrum/color.h"
 
 namespace pmsim {
 
@@ -29,6 +32,16 @@ const BenchRow* find_row(const BenchReport& r, const std::string& scene, const s
   return nullptr;
 }
 
+void save_png(const std::string& dir, const std::string& name, int w, int h, const std::vector<float>& xyz) {
+  std::filesystem::create_directories(dir);
+  std::vector<float> rgb(xyz.size());
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
+    const glm::dvec3 c = xyz_to_linear_srgb({xyz[i], xyz[i + 1], xyz[i + 2]});
+    for (int k = 0; k < 3; ++k) rgb[i + k] = static_cast<float>(c[k]);
+  }
+  write_image((std::filesystem::path(dir) / (name + ".png")).string(), w, h, rgb, nlohmann::json::object());
+}
+
 }  // namespace
 
 BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
@@ -41,6 +54,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
 
   const auto scenes = bench_scenes(opt.size, &rep.notes);
   for (const BenchScene& bs : scenes) {
+    if (!opt.scene_filter.empty() && bs.name.find(opt.scene_filter) == std::string::npos) continue;
     log << "scene " << bs.name << ": reference… " << std::flush;
     const ReferenceImage ref = bs.physical_lenses ? converged_physical_reference(bs.scene, opt.cache_dir)
                                                   : converged_reference(bs.scene, opt.cache_dir);
@@ -53,6 +67,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
     info.from_cache = ref.from_cache;
     info.half_vs_full_mean_de2000 = image_error_de2000(ref.xyz_half, ref.xyz, ref.lit, white).mean_de2000;
     rep.references.push_back(info);
+    if (!opt.images_dir.empty()) save_png(opt.images_dir, bs.name + "__reference", ref.width, ref.height, ref.xyz);
     log << (ref.from_cache ? "cached" : fmt("%.0f ms", ref.time_ms)) << ", half-vs-full ΔE "
         << fmt("%.3f", info.half_vs_full_mean_de2000) << "\n";
     {
@@ -72,6 +87,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
       rep.rows.push_back(row);
     }
     for (const BenchStrategy& st : bench_strategies(bs, opt.quick)) {
+      if (!opt.strategy_filter.empty() && st.name.find(opt.strategy_filter) == std::string::npos) continue;
       const StrategyResult r = run_strategy(bs.scene, st, opt.threads);
       const ImageError e = image_error_de2000(r.xyz, ref.xyz, ref.lit, white);
       BenchRow row;
@@ -90,6 +106,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
       log << "  " << st.name << ": " << fmt("%.1f ms", r.time_ms) << ", mean ΔE00 " << fmt("%.3f", e.mean_de2000)
           << "\n";
       rep.rows.push_back(row);
+      if (!opt.images_dir.empty()) save_png(opt.images_dir, bs.name + "__" + st.name, ref.width, ref.height, r.xyz);
     }
   }
   if (opt.throughput_rays > 0) {

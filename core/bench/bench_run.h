@@ -18,6 +18,9 @@ struct BenchOptions {
   std::string cache_dir;        // reference cache ("" = none)
   int threads = 0;              // 0: all cores
   int throughput_rays = 0;      // 0: 2e6 (quick 2e5); < 0: skip
+  std::string scene_filter;     // only scenes whose name contains this ("" = all)
+  std::string strategy_filter;  // only strategies whose name contains this ("" = all)
+  std::string images_dir;       // write every image (and the references) as PNG here ("" = none)
 };
 
 // One JSON row. The first eight keys are the contract of issue 5.

@@ -122,6 +122,10 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
   if (bs.physical_lenses) {
     // The lens-model axis: ideal vs physical, dT, Fresnel vs Schlick (all at converged spectra).
     product("ideal-lenses", {"optics.lens_model=ideal"});
+    // The renderer's own physical model (depth-0 s/p profile of the same SML lens) and auto choice.
+    product("renderer-physical", {"optics.lens_model=physical"});
+    product("renderer-physical-schlick", {"optics.lens_model=physical", "optics.schlick=true"});
+    product("renderer-auto-lenses", {"optics.lens_model=auto"});
     for (int dT : quick ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 5})
       v.push_back({"sml-dT" + std::to_string(dT), K::PhysicalLens, {"optics.lens_depth=" + std::to_string(dT)}, 0});
     v.push_back({"sml-dT3-schlick", K::PhysicalLens, {"optics.lens_depth=3", "optics.schlick=true"}, 0});

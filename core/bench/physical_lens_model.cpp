@@ -97,10 +97,14 @@ bool condenser_jones(const Optics& O, const glm::dvec3& k, CMat2& J, LensBundle&
     one.max_depth = 0;
     trace_lens(*O.condenser, O.media, make_ray(o_in, d_in, c == 0 ? ia : ib), one, bundle);
     forward_rays(bundle, fw);
-    if (fw.empty()) return false;
-    // The depth-0 exit ray runs back along k through the sample (reciprocity of the path), so
-    // its transverse basis is that of k.
-    col[c] = field_in_basis(fw.front());
+    // The depth-0 ray that runs back along k through the sample (reciprocity of the path) — not
+    // the entry reflection, which on the steep rim of the cap can also head upward.
+    const PolarizedRay* best = nullptr;
+    for (const PolarizedRay& r : fw)
+      if (r.depth == 0 && (!best || glm::dot(r.dir, k) > glm::dot(best->dir, k))) best = &r;
+    if (!best || glm::dot(best->dir, k) < 1.0 - 1e-9) return false;
+    // Its transverse basis is that of k.
+    col[c] = field_in_basis(*best);
   }
   J = {col[0], col[1]};
   return true;
@@ -117,11 +121,7 @@ void objective_paths(const Optics& O, const glm::dvec3& k, std::vector<Objective
     trace_lens(*O.objective, O.media, make_ray(glm::dvec3(0.0), k, c == 0 ? a : b), O.opt, bundle);
     forward_rays(bundle, fw[c]);
   }
-  const bool paired = fw[0].size() == fw[1].size();
-  const std::size_t n = paired ? fw[0].size() : 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const PolarizedRay &ra = fw[0][i], &rb = fw[1][i];
-    if (ra.depth != rb.depth || glm::dot(ra.dir, rb.dir) < 1.0 - 1e-12) continue;
+  auto add = [&](const PolarizedRay& ra, const PolarizedRay& rb) {
     ObjectivePath p;
     p.jones = {field_in_basis(ra), field_in_basis(rb)};
     p.main = ra.depth == 0;
@@ -131,6 +131,24 @@ void objective_paths(const Optics& O, const glm::dvec3& k, std::vector<Objective
     p.bfp_r_mm = std::hypot(q.x, q.y);
     p.bfp_azimuth = std::atan2(q.y, q.x);
     paths.push_back(p);
+  };
+  // The depth-0 path exists for both input polarizations whenever the lens transmits at all.
+  // (The entry reflection is depth 0 too and may head upward on the steep rim of the front cap:
+  // the transmitted ray is the one through the back cap, the brightest depth-0 forward ray.)
+  const PolarizedRay *ma = nullptr, *mb = nullptr;
+  for (const PolarizedRay& r : fw[0])
+    if (r.depth == 0 && (!ma || r.intensity > ma->intensity)) ma = &r;
+  for (const PolarizedRay& r : fw[1])
+    if (r.depth == 0 && (!mb || r.intensity > mb->intensity)) mb = &r;
+  if (ma && mb) add(*ma, *mb);
+  // Ghosts: the two trees match ray for ray unless a branch of zero intensity was dropped for one
+  // polarization (e.g. p light at Brewster's angle inside); then the ghosts of this direction are
+  // left out (counted in the model report).
+  if (fw[0].size() != fw[1].size()) return;
+  for (std::size_t i = 0; i < fw[0].size(); ++i) {
+    const PolarizedRay &ra = fw[0][i], &rb = fw[1][i];
+    if (&ra == ma || ra.depth != rb.depth || glm::dot(ra.dir, rb.dir) < 1.0 - 1e-12) continue;
+    add(ra, rb);
   }
 }
 
@@ -203,6 +221,22 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   for (long i = 0; i < static_cast<long>(W) * H; ++i)
     for (int r = S->pixel_offset[i]; r < S->pixel_offset[i + 1]; ++r) pixel_of_unit[S->refs[r].unit] = i;
 
+  // Exposure convention (issue 3): amplitudes relative to the axial ray's depth-0 path through
+  // both lenses, so that an empty stage between parallel polars gives Y = 1 on the axis.
+  double axial = 1.0;
+  {
+    LensBundle bundle;
+    std::vector<PolarizedRay> fw[2];
+    std::vector<ObjectivePath> paths;
+    CMat2 Jc;
+    const glm::dvec3 kz(0.0, 0.0, 1.0);
+    if (condenser_jones(O, kz, Jc, bundle, fw[0])) {
+      objective_paths(O, kz, paths, bundle, fw);
+      for (const ObjectivePath& p : paths)
+        if (p.main) axial = std::norm((p.jones * (Jc * CVec2{1.0, 0.0})).x);
+    }
+    if (!(axial > 0.0)) axial = 1.0;
+  }
   const double pol = scene.polarizer_deg * std::numbers::pi / 180.0;
   const CVec2 p_in{std::cos(pol), std::sin(pol)};
   glm::dvec2 outputs[2];
@@ -269,7 +303,7 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
           }
           if (std::isfinite(t)) xyz += L.weight[i] * std::max(0.0, t);
         }
-        img[static_cast<std::size_t>(px)] += xyz;
+        img[static_cast<std::size_t>(px)] += xyz / axial;
       }
     }
   });

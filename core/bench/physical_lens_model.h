@@ -15,7 +15,10 @@
 //    ghost path (2, 4, … internal reflections, up to dT) lands where its exit ray crosses the
 //    back-focal plane, mapped to the image by the depth-0 rays' own height-to-pixel relation, and
 //    adds its intensity there (light of different condenser directions is mutually incoherent).
-// The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
+// Intensities are relative to the axial ray's depth-0 transmission through both lenses (the
+// exposure convention: empty stage, parallel polars, Y = 1 on the axis), as in the renderer's own
+// physical model (core/microscope/lens_polarization.h), which differs from this one in leaving the
+// ghost paths out. The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
 // visible); the plate keeps its full dispersion. The Bertrand lens is ideal (it images the
 // back-focal plane; its own Fresnel losses are polarization-neutral to first order near the axis).
 #include "core/bench/bench_strategy.h"
