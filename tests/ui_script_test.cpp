@@ -53,18 +53,18 @@ TEST(UiScript, DraggingAroundTheFieldCentreTurnsTheStageByTheSweptAngle) {
   ASSERT_TRUE(d);
   const ScriptResult r = run(*d, "turn-stage 30\n");
   ASSERT_TRUE(r.ok) << r.error;
-  // The arc's points are rounded to float window pixels at 0.35 of the radius (~100 px):
-  // 0.01 px of rounding is < 0.01°; 0.2° allows the float maths of atan2.
-  EXPECT_NEAR(d->app().scene().stage_deg, 30.0, 0.2);
+  // ImGui floors mouse positions to whole pixels, as a real mouse reports them; on the arc at
+  // 0.35 of the radius (~106 px) one pixel is 0.54°, so the swept angle is good to 0.6°.
+  EXPECT_NEAR(d->app().scene().stage_deg, 30.0, 0.6);
   ASSERT_TRUE(run(*d, "turn-stage -45 20\n").ok);
-  EXPECT_NEAR(d->app().scene().stage_deg, 345.0, 0.2);  // wrapped into [0, 360)
+  EXPECT_NEAR(d->app().scene().stage_deg, 345.0, 1.2);  // wrapped into [0, 360); two drags
   // A straight drag that does not pass round the centre: from east to north of it is +90°.
   const Layout& l = d->app().layout();
   const float cx = l.field.cx(), cy = l.field.cy(), r0 = l.field_radius() * 0.5f;
   const std::string drag = "drag " + std::to_string(cx + r0) + " " + std::to_string(cy) + " " +
                            std::to_string(cx) + " " + std::to_string(cy - r0) + " 20\n";
   ASSERT_TRUE(run(*d, drag).ok);
-  EXPECT_NEAR(d->app().scene().stage_deg, 75.0, 0.2);
+  EXPECT_NEAR(d->app().scene().stage_deg, 75.0, 1.8);  // three drags, 0.6° each
 }
 
 TEST(UiScript, ShortcutKeysDriveTheInstrument) {
@@ -130,8 +130,8 @@ TEST(UiScript, ExportsAndScreenshotsCarryTheSceneAndSaveLoadRoundTrips) {
   EXPECT_EQ(w.height, 800);
   ASSERT_TRUE(run(*d, "set stage_deg=5\nload " + scene + "\n").ok);
   EXPECT_DOUBLE_EQ(d->app().scene().stage_deg, 33.0);
-  // A folder that does not exist: banner, no crash, nothing written.
-  EXPECT_TRUE(run(*d, "export /nonexistent-dir/x.png\nexpect-error\n").ok);
+  // A folder that cannot exist (under a device file): banner, no crash, nothing written.
+  EXPECT_TRUE(run(*d, "export /dev/null/x.png\nexpect-error\n").ok);
   for (const auto& f : {field, exr, window, scene}) std::filesystem::remove(f);
 }
 

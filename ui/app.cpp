@@ -11,6 +11,7 @@
 #include "core/io/image_file.h"
 #include "core/io/input_error.h"
 #include "core/io/scene_file.h"
+#include "ui/asset_lists.h"
 #include "ui/teaching.h"
 
 namespace pmsim::ui {
@@ -21,6 +22,24 @@ constexpr double kPi = 3.14159265358979323846;
 // Objectives of the brief, in the order of the 1…4 shortcuts.
 constexpr struct { double magnification, na; } kObjectives[] = {
     {4, 0.10}, {10, 0.25}, {40, 0.65}, {50, 0.85}};
+
+// Exports and screenshots go where the user says, creating the folder (e.g. out/ui/) if needed.
+void make_parent_folder(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+}
+
+// A scene path as typed: as is when it exists, else relative to the assets folder (so scripts
+// and the path field can say "assets/scenes/calcite_cono.json" from anywhere).
+std::string resolve_scene_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.empty() || fs::exists(path, ec) || fs::path(path).is_absolute()) return path;
+  const std::string under_assets = path.rfind("assets/", 0) == 0 ? path.substr(7) : path;
+  const fs::path candidate = fs::path(asset_dir()) / under_assets;
+  return fs::exists(candidate, ec) ? candidate.string() : path;
+}
 
 std::string extension_lower(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -95,14 +114,17 @@ bool App::set(std::string_view assignment) {
 }
 
 void App::fail(const std::string& message) {
-  error_ = message;
+  // InputError says "command line" for values that came without a file: here, the UI.
+  const std::string prefix = "command line: ";
+  error_ = message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
   ++counters_.failures;
   std::fprintf(stderr, "pmsim: %s\n", message.c_str());
 }
 
 void App::note(const std::string& message) { notice_ = message; }
 
-bool App::load_scene(const std::string& path) {
+bool App::load_scene(const std::string& typed_path) {
+  const std::string path = resolve_scene_path(typed_path);
   std::vector<std::string> warnings;
   Scene loaded;
   try {
@@ -121,6 +143,7 @@ bool App::load_scene(const std::string& path) {
 
 bool App::save_scene(const std::string& path) {
   try {
+    make_parent_folder(path);
     save_scene_file(scene_, path);
   } catch (const std::exception& e) {
     fail(e.what());
@@ -141,6 +164,7 @@ bool App::export_field(const std::string& path) {
     return false;
   }
   try {
+    make_parent_folder(path);
     write_image(path, image_.width, image_.height, image_.rgb, scene_to_json(scene_));
   } catch (const std::exception& e) {
     fail(e.what());
@@ -159,6 +183,7 @@ std::optional<std::string> App::take_window_screenshot_request() {
 bool App::write_window_pixels(const std::string& path, int width, int height,
                               const std::vector<std::uint8_t>& rgb8) {
   try {
+    make_parent_folder(path);
     write_image_rgb8(path, width, height, rgb8, scene_to_json(scene_));
   } catch (const std::exception& e) {
     fail(e.what());
@@ -257,13 +282,17 @@ void App::draw_field(Scene& edit, bool& changed) {
   if (!error_.empty()) {
     ImGui::SetCursorScreenPos(ImVec2(l.view.x + 8, l.view.y + 8));
     ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.65f, 0.10f, 0.10f, 0.95f));
-    ImGui::BeginChild("##error", ImVec2(l.view.w - 16, 64), true);
-    ImGui::PushTextWrapPos(l.view.w - 100);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(10, 8));
+    ImGui::BeginChild("##error", ImVec2(l.view.w - 16, 72), true,
+                      ImGuiWindowFlags_AlwaysUseWindowPadding);
+    ImGui::PushTextWrapPos(l.view.w - 110);
+    ImGui::TextUnformatted("Not applied, the last good state is kept:");
     ImGui::TextUnformatted(error_.c_str());
     ImGui::PopTextWrapPos();
-    ImGui::SetCursorPos(ImVec2(l.view.w - 90, 8));
+    ImGui::SetCursorPos(ImVec2(l.view.w - 95, 8));
     if (ImGui::Button("Dismiss")) error_.clear();
     ImGui::EndChild();
+    ImGui::PopStyleVar();
     ImGui::PopStyleColor();
   }
   ImGui::End();

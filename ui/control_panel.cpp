@@ -240,8 +240,9 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
 void App::draw_quality_tab(Scene& edit, bool& changed) {
   RenderSettings& r = edit.render;
   OpticsSettings& o = edit.optics;
-  changed |= combo_enum("Lens model", o.lens_model, {"auto (cheapest within tolerance)",
-                                                     "ideal", "physical (SML)"});
+  changed |= combo_enum("Lens model", o.lens_model, {"auto", "ideal", "physical (SML)"});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("auto: per element the cheapest model whose error stays within tolerance");
   changed |= ImGui::SliderInt("Lens depth dT", &o.lens_depth, 0, 4);
   changed |= ImGui::Checkbox("Schlick Fresnel", &o.schlick);
   ImGui::Separator();
@@ -280,6 +281,7 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
 }
 
 void App::draw_files_tab() {
+  ImGui::PushItemWidth(-1);
   ImGui::TextUnformatted("Scene file");
   bool load = input_text("##scene", scene_path_);
   load |= ImGui::Button("Load");
@@ -302,6 +304,7 @@ void App::draw_files_tab() {
   input_text("##window", window_path_);
   if (ImGui::Button("Save window")) request_window_screenshot(window_path_);
   if (!notice_.empty()) ImGui::TextWrapped("%s", notice_.c_str());
+  ImGui::PopItemWidth();
 }
 
 }  // namespace pmsim::ui

@@ -70,12 +70,11 @@ void App::draw_chart() {
     draw->AddTriangleFilled(ImVec2(x - 6, p0.y - 1), ImVec2(x + 6, p0.y - 1), ImVec2(x, p0.y + 9),
                             IM_COL32(255, 255, 255, 255));
     draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), IM_COL32(0, 0, 0, 255), 2.0f);
-    char label[48];
-    std::snprintf(label, sizeof label, "%.0f nm%s", p.retardation_nm,
-                  p.retardation_nm > Teaching::kChartMaxNm ? " (off the chart)" : "");
+    char label[64];
+    std::snprintf(label, sizeof label, "at the probe: %.0f nm, order %.2f%s", p.retardation_nm,
+                  p.order, p.retardation_nm > Teaching::kChartMaxNm ? " (off the chart)" : "");
     const float w = ImGui::CalcTextSize(label).x;
-    draw->AddText(ImVec2(std::min(x + 8, p1.x - w), l.chart.y), IM_COL32(255, 255, 255, 255),
-                  label);
+    draw->AddText(ImVec2(p1.x - w, l.chart.y), IM_COL32(255, 255, 255, 255), label);
   }
   ImGui::End();
   ImGui::PopStyleVar();

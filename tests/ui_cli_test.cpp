@@ -1,0 +1,88 @@
+// The `pmsim` command line as a user runs it: headless screenshots, exit code 2 and no file on
+// bad input, scripts, the frame-rate report.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/io/image_file.h"
+
+namespace {
+
+const std::string kPmsim = std::string(PMSIM_BINARY_DIR) + "/app/pmsim";
+const std::string kOut = std::string(PMSIM_BINARY_DIR) + "/ui_cli_test_out";
+const std::string kSmall = " --set render.width=48 --set render.height=48";
+
+int run(const std::string& args, std::string* output = nullptr) {
+  const std::string log = kOut + "/log.txt";
+  const int status = std::system((kPmsim + " " + args + " > " + log + " 2>&1").c_str());
+  if (output) {
+    std::ifstream f(log);
+    output->assign(std::istreambuf_iterator<char>(f), {});
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class UiCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(std::filesystem::exists(kPmsim)) << "build the pmsim target first";
+    std::filesystem::remove_all(kOut);
+    std::filesystem::create_directories(kOut);
+  }
+  void TearDown() override { std::filesystem::remove_all(kOut); }
+};
+
+TEST_F(UiCli, HeadlessScreenshotIsTheWholeWindowWithTheSceneInItsMetadata) {
+  const std::string png = kOut + "/shot.png";
+  std::string out;
+  ASSERT_EQ(run("--headless" + kSmall + " --set stage_deg=12 --screenshot " + png, &out), 0) << out;
+  const pmsim::LoadedImage img = pmsim::read_image(png);
+  EXPECT_EQ(img.width, 1280);
+  EXPECT_EQ(img.height, 800);
+  ASSERT_TRUE(img.metadata.contains("pmsim:scene"));
+  EXPECT_DOUBLE_EQ(img.metadata["pmsim:scene"]["stage_deg"].get<double>(), 12.0);
+}
+
+TEST_F(UiCli, BadInputExitsWith2NamingTheKeyAndWritesNothing) {
+  const std::string png = kOut + "/bad.png";
+  std::string out;
+  EXPECT_EQ(run("--headless" + kSmall + " --set objective.na=3 --screenshot " + png, &out), 2);
+  EXPECT_NE(out.find("objective.na"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(png));
+  EXPECT_EQ(run("--headless --set nosuchkey=1 --screenshot " + png, &out), 2);
+  EXPECT_NE(out.find("nosuchkey"), std::string::npos) << out;
+  EXPECT_EQ(run("--headless " + kOut + "/missing-scene.json --screenshot " + png, &out), 2);
+  EXPECT_NE(out.find("missing-scene.json"), std::string::npos) << out;
+  EXPECT_EQ(run("--headless --frames many --screenshot " + png), 2);
+  EXPECT_EQ(run("--headless"), 2);  // nothing to produce
+  EXPECT_FALSE(std::filesystem::exists(png));
+}
+
+TEST_F(UiCli, ScriptsRunAndABadScriptLineExitsWith2) {
+  const std::string script = kOut + "/s.pmsim", shot = kOut + "/scripted.png";
+  std::ofstream(script) << "set render.width=48\nset render.height=48\nkey C\nwait converged 60\n"
+                           "screenshot " << shot << "\n";
+  std::string out;
+  ASSERT_EQ(run("--headless --script " + script, &out), 0) << out;
+  const pmsim::LoadedImage img = pmsim::read_image(shot);
+  EXPECT_EQ(img.metadata["pmsim:scene"]["mode"], "cono");
+  std::ofstream(script) << "wait 1\nteleport 3 4\n";
+  EXPECT_EQ(run("--headless --script " + script, &out), 2);
+  EXPECT_NE(out.find("line 2"), std::string::npos) << out;
+}
+
+TEST_F(UiCli, ReportsTheMeasuredFrameRate) {
+  std::string out;
+  ASSERT_EQ(run("--headless" + kSmall + " --frames 20 --no-settle --report-fps", &out), 0) << out;
+  EXPECT_NE(out.find("ui_fps="), std::string::npos) << out;
+  EXPECT_NE(out.find("frames=20"), std::string::npos) << out;
+  std::printf("%s", out.c_str());
+}
+
+}  // namespace
