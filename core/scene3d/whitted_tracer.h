@@ -4,7 +4,8 @@
 // light = two incoherent orthogonal linear halves, paper §5) transformed by G (Fresnel or
 // Schlick), lenses are traced by the SML (trace_lens) and every ray of its bundle is followed.
 // Diffuse surfaces are Lambertian and depolarize; they are lit directly by point and area lights
-// (shadow rays), as in Whitted's model.
+// (shadow rays), as in Whitted's model. Glass bodies and lenses stand in air (n = 1) and do not
+// block shadow rays (see Scene3dWorld::opaque_between).
 //
 // Backward tracing of polarization: for real Fresnel amplitudes the Jones matrix of a path
 // traversed backward is the transpose of the forward one (Stokes reciprocity), so a linear state
