@@ -152,3 +152,14 @@ TEST(SceneFile, ShippedScenesLoadWithoutWarnings) {
     EXPECT_TRUE(warnings.empty()) << e.path() << ": " << (warnings.empty() ? "" : warnings[0]);
   }
 }
+
+TEST(SceneFile, FuzzFindingsAreInputErrors) {
+  // A number beyond double range is a JSON error of the file, not a crash (fuzz finding F1).
+  const std::string path = temp_dir() + "/overflow.json";
+  std::ofstream(path) << R"({"stage_deg": 1e400})";
+  expect_input_error([&] { load_scene_file(path); }, path, "", "");
+  // Parallel biaxial axes leave no frame (fuzz finding F7).
+  expect_input_error(
+      [] { scene_from_json(json::parse(R"({"sample": {"x_axis": [0, 0, 1], "z_axis": [0, 0, 2]}})"), "p.json"); },
+      "p.json", "sample.x_axis", "[0,0,1]");
+}

@@ -283,7 +283,7 @@ Scene load_scene_file(const std::string& path, std::vector<std::string>* warning
   json j;
   try {
     j = json::parse(f);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e400)
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
   }
   return scene_from_json(j, path, warnings);

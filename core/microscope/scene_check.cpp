@@ -52,6 +52,17 @@ void check_scene(const Scene& s, const std::string& file) {
             "[" + num(a[0]) + "," + num(a[1]) + "," + num(a[2]) + "]",
             "a direction cannot be the zero vector");
   }
+  {
+    // The biaxial frame needs two independent directions (Gram–Schmidt from z_axis).
+    const auto& x = s.sample.x_axis;
+    const auto& z = s.sample.z_axis;
+    const double cx = x[1] * z[2] - x[2] * z[1], cy = x[2] * z[0] - x[0] * z[2], cz = x[0] * z[1] - x[1] * z[0];
+    const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    const double lz = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+    require(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-9 * lx * lz, file, "sample.x_axis",
+            "[" + num(x[0]) + "," + num(x[1]) + "," + num(x[2]) + "]",
+            "must not be parallel to sample.z_axis");
+  }
   if (s.sample.crystal) {
     const CrystalIndices& c = *s.sample.crystal;
     const double idx[] = {c.uniaxial ? c.no : c.nalpha, c.uniaxial ? c.ne : c.nbeta,

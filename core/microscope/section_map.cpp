@@ -54,7 +54,7 @@ SectionMap parse_section(const std::string& path) {
   json j;
   try {
     j = json::parse(f);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
   }
   SectionMap m;
@@ -133,7 +133,12 @@ std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path) 
   std::lock_guard<std::mutex> lock(mu);
   auto it = cache.find(path);
   if (it != cache.end()) return it->second;
-  auto m = std::make_shared<const SectionMap>(parse_section(path));
+  std::shared_ptr<const SectionMap> m;
+  try {
+    m = std::make_shared<const SectionMap>(parse_section(path));
+  } catch (const nlohmann::json::exception& e) {  // a value of the wrong type somewhere
+    throw InputError(path, "", "", std::string("bad thin-section file: ") + e.what());
+  }
   cache[path] = m;
   return m;
 }
