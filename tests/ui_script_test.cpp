@@ -96,10 +96,12 @@ TEST(UiScript, BadInputRaisesTheBannerAndKeepsTheLastGoodScene) {
   // The banner is drawn over the top of the field: red.
   const WindowPixels px = d->read_pixels();
   const Layout& l = d->app().layout();
-  const std::uint8_t* p =
-      &px.rgb[(static_cast<size_t>(l.view.y + 40) * px.width + static_cast<int>(l.view.x + 20)) * 3];
+  // A point of the banner below its two text lines and left of its button.
+  const std::uint8_t* p = &px.rgb[(static_cast<size_t>(l.view.y + 70) * px.width +
+                                   static_cast<int>(l.view.x + l.view.w * 0.6f)) * 3];
   EXPECT_GT(p[0], 120);
-  EXPECT_LT(p[1], 60);
+  EXPECT_GT(p[0], 2 * p[1]);
+  EXPECT_GT(p[0], 2 * p[2]);
   // Without expect-error the script stops at the bad line.
   const ScriptResult r = run(*d, "set sample.mineral=unobtainium\nset stage_deg=50\n");
   EXPECT_FALSE(r.ok);

@@ -11,6 +11,7 @@
 #include "core/io/image_file.h"
 #include "core/io/input_error.h"
 #include "core/io/scene_file.h"
+#include "core/microscope/scene_check.h"
 #include "ui/asset_lists.h"
 #include "ui/teaching.h"
 
@@ -58,26 +59,24 @@ double wrap_deg(double angle_deg) {
 
 App::App(const Scene& scene, int renderer_threads)
     : scene_(scene),
-      renderer_(std::make_unique<ProgressiveRenderer>(renderer_threads)),
+      feed_(std::make_unique<RenderFeed>(renderer_threads)),
       teaching_(std::make_unique<Teaching>()) {
   layout_ = compute_layout(window_w_, window_h_);
   try {
     validate_scene(scene_);
-    renderer_->restart(scene_);
+    check_scene(scene_);
   } catch (const std::exception& e) {
     // A bad initial scene (the drivers validate before, so only from code): show it and render
     // the defaults rather than nothing.
     fail(e.what());
     scene_ = Scene{};
-    renderer_->restart(scene_);
   }
+  previous_scene_ = scene_;
   generation_ = 1;
+  feed_->submit(scene_, generation_);
 }
 
-App::~App() {
-  renderer_->cancel();
-  renderer_.reset();
-}
+App::~App() { feed_.reset(); }
 
 void App::set_window_size(int width, int height) {
   window_w_ = width;
@@ -86,16 +85,20 @@ void App::set_window_size(int width, int height) {
 }
 
 bool App::commit(const Scene& candidate) {
+  // Checked here, synchronously, so a bad value is refused in the frame it was made; the
+  // renderer restarts on the feed's thread.
   try {
     validate_scene(candidate);
-    renderer_->restart(candidate);
+    check_scene(candidate);
   } catch (const std::exception& e) {
     fail(e.what());
     ++counters_.rejected;
     return false;
   }
+  previous_scene_ = scene_;
   scene_ = candidate;
   ++generation_;
+  feed_->submit(scene_, generation_);
   ++counters_.commits;
   error_.clear();
   return true;
@@ -193,10 +196,17 @@ bool App::write_window_pixels(const std::string& path, int width, int height,
   return true;
 }
 
-bool App::wait_rendered(double timeout_s) const { return renderer_->wait(timeout_s); }
+bool App::wait_rendered(double timeout_s) const { return feed_->wait(timeout_s); }
 
 void App::pull_snapshot() {
-  if (renderer_->snapshot(image_)) {
+  if (auto failure = feed_->take_failure(); failure && failure->id == generation_) {
+    // Refused by the renderer after our own checks passed: back to the scene before.
+    fail(failure->message);
+    ++counters_.rejected;
+    scene_ = previous_scene_;
+    feed_->submit(scene_, ++generation_);
+  }
+  if (feed_->snapshot(image_, image_current_)) {
     field_texture_.upload(image_.width, image_.height, image_.rgb);
     ++counters_.uploads;
   }
@@ -307,7 +317,7 @@ void App::draw_status() {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
   const RenderImage& im = image_;
-  const bool current = im.generation == generation_;
+  const bool current = image_current_;
   ImGui::Text("%s  %.1f spp  %d wl  pass %d  err %.2f dE00  %s  %.0f ms", current ? "" : "(previous)",
               im.samples_per_pixel, im.wavelengths, im.passes, im.error_estimate,
               im.converged ? "converged" : "refining", im.time_ms);

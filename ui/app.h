@@ -15,6 +15,7 @@
 #include "core/microscope/scene.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/layout.h"
+#include "ui/render_feed.h"
 #include "ui/linear_texture.h"
 #include "ui/shortcuts.h"
 
@@ -59,7 +60,8 @@ class App {
 
   const Scene& scene() const { return scene_; }
   const RenderImage& image() const { return image_; }
-  bool converged() const { return image_.converged && image_.generation == generation_; }
+  // The image on screen is the converged image of the current scene.
+  bool converged() const { return image_.converged && image_current_; }
   bool wait_rendered(double timeout_s) const;  // blocks (drivers/tests only, never in frame())
   const std::string& error() const { return error_; }
   void clear_error() { error_.clear(); }
@@ -85,9 +87,11 @@ class App {
   void note(const std::string& message);
 
   Scene scene_;                     // the last good scene: what the renderer is rendering
-  std::uint64_t generation_ = 0;    // renderer generation of scene_
-  std::unique_ptr<ProgressiveRenderer> renderer_;
+  Scene previous_scene_;            // the one before, restored if the renderer refuses scene_
+  std::uint64_t generation_ = 0;    // counts accepted scenes (the feed's submission ids)
+  std::unique_ptr<RenderFeed> feed_;
   RenderImage image_;
+  bool image_current_ = false;      // image_ belongs to scene_
   LinearTexture field_texture_;
   Layout layout_;
   int window_w_ = 1280, window_h_ = 800;

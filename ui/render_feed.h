@@ -1,0 +1,58 @@
+#pragma once
+// The UI's side of the progressive renderer. ProgressiveRenderer::restart() stops the pass in
+// flight and joins its worker, which can take a good part of a pass (tens of ms for a thin
+// section); the UI thread must never wait for that. So scenes go to a small feeder thread that
+// restarts the renderer with the newest one (older pending scenes are skipped: only the last
+// position of a drag matters), and the UI thread only ever takes snapshots.
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "core/render/progressive_renderer.h"
+
+namespace pmsim::ui {
+
+class RenderFeed {
+ public:
+  explicit RenderFeed(int renderer_threads = 0);
+  ~RenderFeed();
+  RenderFeed(const RenderFeed&) = delete;
+  RenderFeed& operator=(const RenderFeed&) = delete;
+
+  // Queues `scene` (tagged with the caller's `id`) for rendering; returns at once.
+  void submit(const Scene& scene, std::uint64_t id);
+
+  struct Failure {
+    std::uint64_t id;
+    std::string message;
+  };
+  // A scene the renderer refused (InputError from restart), reported once.
+  std::optional<Failure> take_failure();
+
+  // Newest image if it changed since `out` (as ProgressiveRenderer::snapshot). `current` tells
+  // whether it belongs to the last scene submitted (no newer submission pending or in restart).
+  bool snapshot(RenderImage& out, bool& current) const;
+  // Blocks until the last submitted scene is being rendered and has converged, or timeout.
+  bool wait(double timeout_s) const;
+
+ private:
+  void run();
+
+  ProgressiveRenderer renderer_;
+  mutable std::mutex mu_;
+  mutable std::condition_variable cv_;
+  std::optional<std::pair<Scene, std::uint64_t>> pending_;
+  bool busy_ = false;                      // a restart is in progress
+  bool quit_ = false;
+  std::uint64_t submitted_id_ = 0;         // id of the newest submission
+  std::uint64_t applied_id_ = 0;           // id of the scene the renderer is rendering
+  std::uint64_t renderer_generation_ = 0;  // the renderer's generation for applied_id_
+  std::optional<Failure> failure_;
+  std::thread thread_;
+};
+
+}  // namespace pmsim::ui
