@@ -62,6 +62,7 @@ class App {
   const RenderImage& image() const { return image_; }
   // The image on screen is the converged image of the current scene.
   bool converged() const { return image_.converged && image_current_; }
+  bool image_current() const { return image_current_; }  // on screen: an image of scene()
   bool wait_rendered(double timeout_s) const;  // blocks (drivers/tests only, never in frame())
   const std::string& error() const { return error_; }
   void clear_error() { error_.clear(); }
