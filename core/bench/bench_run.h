@@ -29,6 +29,8 @@ struct BenchRow {
   int width = 0, height = 0;
   double time_ms = 0.0, mean_de2000 = 0.0, p95_de2000 = 0.0, max_de2000 = 0.0;
   int wavelengths = 0;
+  double cpu_ms = 0.0;          // process CPU time (all threads) spent in the strategy: on a shared
+                                // machine, cpu_ms / cores estimates the unloaded wall time
   std::string code;             // "product" (the renderer) or "bench-side"
   double renderer_estimate = -1.0;
   std::string model_report;
@@ -48,6 +50,8 @@ struct BenchReport {
   std::vector<ThroughputResult> throughput;
   std::vector<std::string> notes;
   double total_s = 0.0;
+  double load_average = 0.0;    // 1-minute load average at the end of the run (/proc/loadavg)
+  int cores = 0;
 };
 
 BenchReport run_bench(const BenchOptions& options, std::ostream& log);
