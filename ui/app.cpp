@@ -333,7 +333,10 @@ void App::handle_shortcuts(Scene& edit, bool& changed) {
   if (io.WantTextInput) return;  // typing a path or a number is not a command
   for (const Shortcut& s : shortcuts()) {
     if (s.shift != io.KeyShift || s.ctrl != io.KeyCtrl) continue;
-    if (ImGui::IsKeyPressed(s.key, true)) apply_action(s.action, edit, changed);
+    // Turning keys repeat while held, toggles do not (holding A must not flicker the analyzer).
+    const bool repeats = s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn ||
+                         s.action == Action::WedgeOut;
+    if (ImGui::IsKeyPressed(s.key, repeats)) apply_action(s.action, edit, changed);
   }
 }
 
