@@ -1,10 +1,11 @@
 // pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif [--stats FILE.json]
-// Renders a microscope scene to convergence (or to render.spp / render.wavelengths) and writes
-// the image atomically. Bad input: a message naming file, key and value on stderr, exit code 2,
+// Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
+// scene ("type": "scene3d", core/scene3d), and writes the image atomically. Bad input: a message naming file, key and value on stderr, exit code 2,
 // no output file.
 #include <unistd.h>
 
 #include <chrono>
+#include <new>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include "core/io/scene_file.h"
 #include "core/microscope/sample_source.h"
 #include "core/render/progressive_renderer.h"
+#include "core/scene3d/scene3d_render.h"
 
 namespace {
 
@@ -74,17 +76,46 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
-// The single place where scene types dispatch: microscope scenes (the default) render here; a
-// "scene3d" scene is for the lead's 3-D renderer to add.
-pmsim::Scene load_microscope_scene(const std::string& path, std::vector<std::string>& warnings) {
-  std::ifstream f(path);
-  if (!f) throw pmsim::InputError(path, "", "", "cannot open the scene file");
-  nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
-  if (j.is_discarded()) throw pmsim::InputError(path, "", "", "not valid JSON");
-  if (j.is_object() && j.contains("type") && j["type"] != "microscope")
-    throw pmsim::InputError(path, "type", j["type"].dump(),
-                            "pmsim-render renders \"microscope\" scenes");
-  return pmsim::scene_from_json(j, path, &warnings);
+nlohmann::json read_scene_json(const std::string& path) {
+  const std::string text = pmsim::read_scene_text(path);
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, numbers beyond double (1e400)
+    throw pmsim::InputError(path, "", "", std::string("not valid JSON: ") + e.what());
+  }
+}
+
+// The single place where scene types dispatch: "scene3d" scenes go to the 3-D renderer, anything
+// else (no "type", or "microscope") is a microscope scene.
+bool is_scene3d(const nlohmann::json& j) {
+  return j.is_object() && j.contains("type") && j["type"].is_string() && j["type"] == "scene3d";
+}
+
+// --set key=value on a 3-D scene: the value (JSON when it parses, else a string) replaces the one
+// at the dot path, creating objects on the way; the 3-D scene parser then checks keys and values.
+void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw pmsim::InputError("", assignment, "", "expected key=value");
+  const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
+  if (v.is_discarded()) v = text;
+  nlohmann::json* node = &j;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw pmsim::InputError("", key, text, "empty part in the dot path");
+    if (!node->is_object())
+      throw pmsim::InputError("", key, text, "'" + key.substr(0, start ? start - 1 : 0) + "' is not an object");
+    if (dot == std::string::npos) {
+      (*node)[part] = v;
+      return;
+    }
+    node = &(*node)[part];
+    if (node->is_null()) *node = nlohmann::json::object();
+    start = dot + 1;
+  }
 }
 
 void progress_bar(const pmsim::RenderImage& img) {
@@ -105,40 +136,73 @@ int main(int argc, char** argv) {
   if (!(ends_with_ci(args.out, ".png") || ends_with_ci(args.out, ".exr") ||
         ends_with_ci(args.out, ".tif") || ends_with_ci(args.out, ".tiff")))
     usage_error("--out must end in .png, .exr or .tif: '" + args.out + "'");
-  pmsim::Scene scene;
-  pmsim::RenderImage img;
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+  nlohmann::json meta, stats;
   try {
     std::vector<std::string> warnings;
     const std::string path = args.scene_path.empty()
                                  ? pmsim::asset_dir() + "/scenes/quartz_section_ortho.json"
                                  : args.scene_path;
-    scene = load_microscope_scene(path, warnings);
-    for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
-    for (const std::string& s : args.sets) pmsim::apply_setting(scene, s);
-    const bool tty = ::isatty(STDERR_FILENO);
-    img = pmsim::ProgressiveRenderer::render(
-        scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);
-    if (tty) std::fprintf(stderr, "\n");
+    nlohmann::json j = read_scene_json(path);
+    if (is_scene3d(j)) {
+      for (const std::string& s : args.sets) apply_scene3d_setting(j, s);
+      const pmsim::Scene3dDescription desc = pmsim::parse_scene3d(j, path);
+      pmsim::Scene3dImage img = pmsim::render_scene3d(desc);
+      img.settings["scene"] = j;
+      width = img.width;
+      height = img.height;
+      rgb = std::move(img.rgb_linear);
+      meta = std::move(img.settings);
+      stats = {{"time_ms", img.time_ms},
+               {"samples_per_pixel", desc.camera.samples_per_pixel * desc.camera.samples_per_pixel},
+               {"wavelengths", meta.contains("channels") ? meta["channels"] : nlohmann::json(3)},
+               {"error_estimate", 0.0},
+               {"converged", true},
+               {"passes", 1},
+               {"model_report", "scene3d: Whitted ray tracer with SML lenses"}};
+    } else {
+      if (j.is_object() && j.contains("type") && j["type"] != "microscope")
+        throw pmsim::InputError(path, "type", j["type"].dump(),
+                                "pmsim-render renders \"microscope\" and \"scene3d\" scenes");
+      pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
+      for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
+      for (const std::string& s : args.sets) pmsim::apply_setting(scene, s);
+      const bool tty = ::isatty(STDERR_FILENO);
+      pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
+          scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);
+      if (tty) std::fprintf(stderr, "\n");
+      width = img.width;
+      height = img.height;
+      rgb = std::move(img.rgb);
+      meta = pmsim::scene_to_json(scene);
+      stats = {{"time_ms", img.time_ms},
+               {"samples_per_pixel", img.samples_per_pixel},
+               {"wavelengths", img.wavelengths},
+               {"error_estimate", img.error_estimate},
+               {"converged", img.converged},
+               {"passes", img.passes},
+               {"model_report", img.model_report}};
+    }
   } catch (const pmsim::InputError& e) {
     std::cerr << "pmsim-render: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "pmsim-render: not enough memory to render this scene (try a smaller "
+                 "render.width × render.height)\n";
+    return 1;
+  } catch (const std::exception& e) {  // no future throw may abort: a message and exit 1
+    std::cerr << "pmsim-render: " << e.what() << "\n";
+    return 1;
   }
   try {
-    nlohmann::json meta = pmsim::scene_to_json(scene);
-    pmsim::write_image(args.out, img.width, img.height, img.rgb, meta);
-    if (!args.stats.empty()) {
-      const nlohmann::json stats = {{"time_ms", img.time_ms},
-                                    {"samples_per_pixel", img.samples_per_pixel},
-                                    {"wavelengths", img.wavelengths},
-                                    {"error_estimate", img.error_estimate},
-                                    {"converged", img.converged},
-                                    {"passes", img.passes},
-                                    {"model_report", img.model_report}};
-      pmsim::write_text_atomically(args.stats, stats.dump(2) + "\n");
-    }
+    pmsim::write_image(args.out, width, height, rgb, meta);
+    if (!args.stats.empty()) pmsim::write_text_atomically(args.stats, stats.dump(2) + "\n");
+  } catch (const std::bad_alloc&) {
+    std::cerr << "pmsim-render: not enough memory to write " << args.out << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "pmsim-render: " << e.what() << "\n";
-    std::error_code ec;
     return 1;
   }
   return 0;

@@ -3,11 +3,14 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
+
+#include "core/io/image_file.h"
 
 namespace fs = std::filesystem;
 
@@ -57,4 +60,36 @@ TEST(RenderCli, RendersASmallSceneWithStats) {
   for (const char* k : {"time_ms", "samples_per_pixel", "wavelengths", "error_estimate", "model_report"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_LT(j["error_estimate"].get<double>(), 0.5);  // rendered to convergence
+}
+
+TEST(RenderCli, AScene3dFileGoesToThe3dRendererWithSetOnItsDotPaths) {
+  ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " not built";
+  const std::string out = temp_dir() + "/fig3.exr", stats = temp_dir() + "/fig3.json";
+  const std::string scene = std::string(PMSIM_SOURCE_DIR) + "/assets/scenes3d/fig3_lens_point_light.json";
+  EXPECT_EQ(run(scene + " --set camera.width=40 --set camera.height=30 --set render.wavelengths=8 --out " +
+                out + " --stats " + stats),
+            0);
+  const pmsim::LoadedImage img = pmsim::read_image(out);
+  // The --set values reached the 3-D scene: the image has the size they ask for.
+  EXPECT_EQ(img.width, 40);
+  EXPECT_EQ(img.height, 30);
+  ASSERT_TRUE(img.metadata.contains("pmsim:scene"));
+  EXPECT_EQ(img.metadata["pmsim:scene"]["type"], "scene3d");
+  EXPECT_EQ(img.metadata["pmsim:scene"]["scene"]["camera"]["width"], 40);
+  // The lit striped plane fills most of the view: the image cannot be black.
+  double sum = 0.0;
+  for (float v : img.pixels) {
+    ASSERT_TRUE(std::isfinite(v));
+    sum += v;
+  }
+  EXPECT_GT(sum / img.pixels.size(), 0.01);
+  std::ifstream f(stats);
+  const nlohmann::json j = nlohmann::json::parse(f);
+  for (const char* k : {"time_ms", "samples_per_pixel", "wavelengths", "error_estimate"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  // A bad value at a 3-D dot path is an input error of the 3-D parser: exit 2, no file.
+  const std::string bad = temp_dir() + "/fig3_bad.png";
+  EXPECT_EQ(run(scene + " --set camera.width=-5 --out " + bad), 2);
+  EXPECT_EQ(run(scene + " --set camera.width.x=5 --out " + bad), 2);
+  EXPECT_FALSE(fs::exists(bad));
 }

@@ -1,13 +1,18 @@
 #include "core/io/image_file.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "core/io/atomic_file.h"
 #include "core/spectrum/color.h"
@@ -31,11 +36,43 @@ void add_metadata(OIIO::ImageSpec& spec, const nlohmann::json& metadata) {
   spec.attribute("ImageDescription", metadata.dump());
 }
 
+// Writes all of `bytes` to `path` and forces them to the disk: every short write, ENOSPC/EFBIG
+// (full disk, file-size limit) and a failing fsync/close is an error.
+void write_bytes_checked(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error(std::strerror(errno));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      throw std::runtime_error(std::strerror(err));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    throw std::runtime_error(std::strerror(err));
+  }
+  if (::close(fd) != 0) throw std::runtime_error(std::strerror(errno));
+}
+
+// Encodes in memory (an OpenImageIO IOVecOutput proxy) and writes the bytes ourselves: OIIO's
+// PNG writer ignores a failed fwrite and reports success on a full disk (reliability finding F9),
+// so the file write must not be left to it. Formats without proxy support write directly and
+// are read back to verify them.
 template <class Pixel>
 void write_with_oiio(const std::string& tmp, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
                      const Pixel* pixels) {
   auto out = OIIO::ImageOutput::create(tmp);
   if (!out) throw std::runtime_error(OIIO::geterror());
+  const bool proxy = out->supports("ioproxy");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput vec(bytes);
+  if (proxy && !out->set_ioproxy(&vec)) throw std::runtime_error(out->geterror());
   if (!out->open(tmp, spec)) throw std::runtime_error(out->geterror());
   if (!out->write_image(type, pixels)) {
     const std::string err = out->geterror();
@@ -43,6 +80,16 @@ void write_with_oiio(const std::string& tmp, const OIIO::ImageSpec& spec, OIIO::
     throw std::runtime_error(err);
   }
   if (!out->close()) throw std::runtime_error(out->geterror());
+  out.reset();
+  if (proxy) {
+    if (bytes.empty()) throw std::runtime_error("the image encoder produced no data");
+    write_bytes_checked(tmp, bytes);
+    return;
+  }
+  auto in = OIIO::ImageInput::open(tmp);
+  std::vector<float> check(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in || !in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, check.data()))
+    throw std::runtime_error("the written file does not read back (disk full?)");
 }
 
 }  // namespace

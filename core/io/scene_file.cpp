@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 
 #include "core/io/atomic_file.h"
@@ -37,9 +38,44 @@ bool as_bool(const json& v) {
   if (!v.is_boolean()) throw BadValue{"expected true or false"};
   return v.get<bool>();
 }
+// Well-formed UTF-8 (RFC 3629: no overlongs, no surrogates, ≤ U+10FFFF): anything else cannot be
+// saved back as JSON (nlohmann's dump throws on it).
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    int n;
+    unsigned cp;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      n = 1, cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      n = 2, cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      n = 3, cp = c & 0x07;
+    } else {
+      return false;
+    }
+    if (i + n >= s.size()) return false;  // truncated sequence
+    for (int k = 1; k <= n; ++k) {
+      const unsigned char d = static_cast<unsigned char>(s[i + k]);
+      if ((d & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    static constexpr unsigned kMin[4] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += n + 1;
+  }
+  return true;
+}
+
 std::string as_string(const json& v) {
   if (!v.is_string()) throw BadValue{"expected a string"};
-  return v.get<std::string>();
+  std::string s = v.get<std::string>();
+  if (!valid_utf8(s)) throw BadValue{"not valid UTF-8 text"};
+  return s;
 }
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -250,6 +286,7 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
     throw InputError(file, "type", shown(j["type"]), "this reader takes microscope scenes");
   Scene s;
   bool bertrand_given = false;
+  std::map<std::string, std::string> raw;  // key → its value as written, for messages
   // Flatten nested objects into dot paths; sample.crystal is a value, not a group.
   std::function<void(const json&, const std::string&)> walk = [&](const json& obj,
                                                                 const std::string& prefix) {
@@ -257,7 +294,8 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
       const std::string path = prefix.empty() ? it.key() : prefix + "." + it.key();
       if (const Key* k = find_key(path)) {
         if (path == "bertrand") bertrand_given = true;
-        read_key(s, *k, it.value(), file, shown(it.value()));
+        raw[path] = shown(it.value());
+        read_key(s, *k, it.value(), file, raw[path]);
       } else if (it.value().is_object()) {
         walk(it.value(), path);
       } else if (!(prefix.empty() && is_annotation(path))) {
@@ -273,16 +311,36 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
       !j["sample"]["crystal"].is_null())
     read_key(s, *find_key("sample.crystal"), j["sample"]["crystal"], file,
              shown(j["sample"]["crystal"]));
-  validate_scene(s, file);
+  try {
+    validate_scene(s, file);
+  } catch (const InputError& e) {
+    const auto it = raw.find(e.key);
+    if (it == raw.end()) throw;
+    throw e.with_value(it->second);  // the value as the file wrote it
+  }
   return s;
 }
 
-Scene load_scene_file(const std::string& path, std::vector<std::string>* warnings) {
-  std::ifstream f(path);
+std::string read_scene_text(const std::string& path) {
+  // A folder opens as an ifstream on Linux and fails only while being read, from inside the
+  // parser (std::ios_base::failure thrown through nlohmann's lexer left its heap corrupt): refuse
+  // it here and parse from memory.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path, "", "", "cannot read: is a folder, not a scene file");
+  std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, "", "", "cannot open the scene file");
+  std::ostringstream text;
+  text << f.rdbuf();
+  if (f.bad()) throw InputError(path, "", "", "cannot read the scene file");
+  return text.str();
+}
+
+Scene load_scene_file(const std::string& path, std::vector<std::string>* warnings) {
+  const std::string text = read_scene_text(path);
   json j;
   try {
-    j = json::parse(f);
+    j = json::parse(text);
   } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e400)
     throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
   }
@@ -318,7 +376,15 @@ void apply_setting(Scene& scene, std::string_view key, std::string_view value) {
   // Switching the view mode moves condenser top lens and Bertrand lens together, as the UI's
   // one-click switch does; bertrand can then be flipped on its own.
   if (key == "mode") s.bertrand_in = s.mode == ViewMode::Cono;
-  validate_scene(s, "");
+  try {
+    // Too many pixels is the fault of the side just set, not necessarily of render.height.
+    if (key == "render.width" || key == "render.height")
+      check_pixel_count(s, "", key == "render.width" ? "render.width" : "render.height");
+    validate_scene(s, "");
+  } catch (const InputError& e) {
+    if (e.key != key) throw;
+    throw e.with_value(std::string(value));  // as typed: 1000000, not 1e+06
+  }
   scene = s;
 }
 

@@ -17,6 +17,8 @@ namespace pmsim {
 Scene scene_from_json(const nlohmann::json& j, const std::string& file,
                       std::vector<std::string>* warnings = nullptr);
 Scene load_scene_file(const std::string& path, std::vector<std::string>* warnings = nullptr);
+// The text of a scene file (any type); InputError naming the file when it cannot be read.
+std::string read_scene_text(const std::string& path);
 
 // The full state, every key, so that save → load round-trips exactly.
 nlohmann::json scene_to_json(const Scene& scene);

@@ -1,6 +1,8 @@
 #include "core/microscope/scene_check.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "core/io/input_error.h"
@@ -13,10 +15,15 @@ void require(bool ok, const std::string& file, const char* key, const std::strin
              const std::string& why) {
   if (!ok) throw InputError(file, key, value, why);
 }
+// Integers exactly, other numbers in their shortest round-trip form (0.3, not 0.29999…).
 std::string num(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
+  char buf[64];
+  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+  }
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 }  // namespace
 
@@ -24,6 +31,15 @@ bool render_strategy_known(const std::string& s) {
   return s == "auto" || s == "modal" || s == "exact";
 }
 std::string render_strategy_list() { return "auto|modal|exact"; }
+
+void check_pixel_count(const Scene& s, const std::string& file, const char* key) {
+  const long long n = static_cast<long long>(s.render.width) * s.render.height;
+  const bool w = std::string(key) == "render.width";
+  require(n <= kMaxRenderPixels, file, key, num(w ? s.render.width : s.render.height),
+          "render.width × render.height = " + num(s.render.width) + " × " + num(s.render.height) +
+              " = " + std::to_string(n) + " pixels, more than the limit of " +
+              std::to_string(kMaxRenderPixels) + " (8192²)");
+}
 
 void check_scene(const Scene& s, const std::string& file) {
   auto finite = [&](double v, const char* key) {
@@ -73,7 +89,9 @@ void check_scene(const Scene& s, const std::string& file) {
     if (!c.uniaxial)
       require(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma, file, "sample.crystal", "",
               "biaxial indices must satisfy nalpha ≤ nbeta ≤ ngamma");
-  } else if (s.sample_in && s.sample.type != SampleType::Section) {
+  } else {
+    // Whatever the sample type: a typo on a section scene must not wait until the user switches
+    // to a plate to be reported on a key they did not touch.
     require(mineral_known(s.sample.mineral), file, "sample.mineral", s.sample.mineral,
             "unknown mineral (known: " + known_minerals_list() + ")");
   }
@@ -89,6 +107,7 @@ void check_scene(const Scene& s, const std::string& file) {
           num(s.render.width), "must be in 1…16384");
   require(s.render.height > 0 && s.render.height <= 16384, file, "render.height",
           num(s.render.height), "must be in 1…16384");
+  check_pixel_count(s, file, "render.height");
   require(s.render.spp >= 0 && s.render.spp <= 1000000, file, "render.spp", num(s.render.spp),
           "must be ≥ 0 (0: until converged)");
   require(s.render.wavelengths >= 0 && s.render.wavelengths <= 4001, file, "render.wavelengths",

@@ -9,6 +9,13 @@ namespace pmsim {
 
 void check_scene(const Scene& scene, const std::string& file = "");
 
+// Bound on render.width × render.height: 8192² pixels already take ~3.5 GB (float RGB + XYZ and
+// the double accumulators); 16384² (each side within range) would take ~13 GB.
+inline constexpr long long kMaxRenderPixels = 8192LL * 8192LL;
+// Throws InputError on `key` (render.width or render.height, the one just set) when the pixel
+// count exceeds kMaxRenderPixels.
+void check_pixel_count(const Scene& scene, const std::string& file, const char* key);
+
 // render.strategy: "auto" (the cheapest accurate plate model per scene), "modal" (eigenmodes fitted
 // across the spectrum, band-averaged interference terms), "exact" (plate Jones matrix at every
 // wavelength sample, plain midpoint quadrature: the paper's uniform sampling).
