@@ -15,8 +15,10 @@
 namespace {
 
 const std::string kPmsim = std::string(PMSIM_BINARY_DIR) + "/app/pmsim";
-const std::string kOut = std::string(PMSIM_BINARY_DIR) + "/ui_cli_test_out";
 const std::string kSmall = " --set render.width=48 --set render.height=48";
+
+// One folder per test: ctest runs the tests of this file as parallel processes.
+std::string kOut;
 
 int run(const std::string& args, std::string* output = nullptr) {
   const std::string log = kOut + "/log.txt";
@@ -32,6 +34,8 @@ class UiCli : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(std::filesystem::exists(kPmsim)) << "build the pmsim target first";
+    kOut = std::string(PMSIM_BINARY_DIR) + "/ui_cli_test_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
     std::filesystem::remove_all(kOut);
     std::filesystem::create_directories(kOut);
   }
