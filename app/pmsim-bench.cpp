@@ -1,9 +1,10 @@
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
-//             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR]
+//             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR] [--from-json FILE]
 // Renders the bench scenes with every strategy, measures wall time and per-pixel CIEDE2000
 // against cached converged references, prints the table and the issue-5 targets, and writes JSON
 // rows, docs-ready markdown (frontier.md) and the frontier plot (frontier.png) into --out-dir.
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <unistd.h>
@@ -18,7 +19,7 @@ namespace {
 void usage(std::ostream& o) {
   o << "usage: pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N]\n"
        "                   [--cache-dir DIR] [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR]\n"
-       "                   [--images DIR]\n";
+       "                   [--images DIR] [--from-json FILE (redraw table/plot/markdown, no run)]\n";
 }
 
 // <build>/bench-cache next to the app folder of this executable.
@@ -45,7 +46,7 @@ int parse_int(const std::string& flag, const char* v) {
 int main(int argc, char** argv) {
   pmsim::BenchOptions opt;
   opt.cache_dir = default_cache_dir();
-  std::string json_path, out_dir;
+  std::string json_path, out_dir, from_json;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
       else if (a == "--scene") opt.scene_filter = value();
       else if (a == "--strategy") opt.strategy_filter = value();
       else if (a == "--images") opt.images_dir = value();
+      else if (a == "--from-json") from_json = value();
       else if (a == "--size") {
         opt.size = parse_int(a, value());
         if (opt.size < 8 || opt.size > 4096) throw pmsim::InputError("", a, std::to_string(opt.size), "must be in 8…4096");
@@ -80,7 +82,20 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const pmsim::BenchReport rep = pmsim::run_bench(opt, std::cerr);
+    pmsim::BenchReport rep;
+    if (!from_json.empty()) {
+      std::ifstream in(from_json);
+      if (!in) throw pmsim::InputError(from_json, "--from-json", from_json, "cannot read the file");
+      nlohmann::json j;
+      try {
+        j = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::exception& e) {
+        throw pmsim::InputError(from_json, "--from-json", from_json, e.what());
+      }
+      rep = pmsim::bench_report_from_json(j, from_json);
+    } else {
+      rep = pmsim::run_bench(opt, std::cerr);
+    }
     std::cout << pmsim::bench_table(rep);
     if (!json_path.empty()) pmsim::write_text_atomically(json_path, pmsim::bench_report_json(rep).dump(1) + "\n");
     if (!out_dir.empty()) {

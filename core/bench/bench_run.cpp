@@ -17,6 +17,7 @@
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
 #include "core/io/image_file.h"
+#include "core/io/input_error.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 
@@ -171,6 +172,48 @@ nlohmann::json bench_report_json(const BenchReport& rep) {
   return j;
 }
 
+BenchReport bench_report_from_json(const nlohmann::json& j, const std::string& file) {
+  BenchReport rep;
+  const auto need = [&](const nlohmann::json& o, const char* key) -> const nlohmann::json& {
+    if (!o.is_object() || !o.contains(key)) throw InputError(file, key, "", "missing");
+    return o.at(key);
+  };
+  try {
+    for (const auto& r : need(j, "rows")) {
+      BenchRow row;
+      row.scene = need(r, "scene").get<std::string>();
+      row.strategy = need(r, "strategy").get<std::string>();
+      row.width = need(r, "width").get<int>();
+      row.height = need(r, "height").get<int>();
+      row.time_ms = need(r, "time_ms").get<double>();
+      row.mean_de2000 = need(r, "mean_de2000").get<double>();
+      row.p95_de2000 = need(r, "p95_de2000").get<double>();
+      row.max_de2000 = need(r, "max_de2000").get<double>();
+      row.wavelengths = r.value("wavelengths", 0);
+      row.cpu_ms = r.value("cpu_ms", 0.0);
+      row.code = r.value("code", std::string("product"));
+      row.renderer_estimate = r.value("renderer_error_estimate", -1.0);
+      row.model_report = r.value("model_report", std::string());
+      rep.rows.push_back(row);
+    }
+    for (const auto& i : j.value("references", nlohmann::json::array()))
+      rep.references.push_back({i.value("scene", ""), i.value("description", ""), "", i.value("time_ms", 0.0),
+                                i.value("from_cache", false), i.value("half_vs_full_mean_de2000", 0.0)});
+    for (const auto& t : j.value("lens_throughput", nlohmann::json::array()))
+      rep.throughput.push_back({t.value("name", ""), t.value("rays_per_s_per_core", 0.0), t.value("rays", 0.0), 0.0,
+                                t.value("note", "")});
+    rep.notes = j.value("notes", std::vector<std::string>{});
+    rep.options.quick = j.value("quick", false);
+    rep.options.size = j.value("size", 0);
+    rep.total_s = j.value("total_s", 0.0);
+    rep.load_average = j.value("load_average", 0.0);
+    rep.cores = j.value("cores", 0);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "rows", "", std::string("malformed bench report: ") + e.what());
+  }
+  return rep;
+}
+
 std::string bench_table(const BenchReport& rep) {
   std::ostringstream o;
   char line[256];
@@ -213,7 +256,7 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
     const std::string sc = "calcite-1mm-cono";
     const BenchRow* best = nullptr;
     for (const BenchRow& r : rep.rows)
-      if (r.scene == sc && r.mean_de2000 <= 1.0 && r.strategy.rfind("reference", 0) != 0 &&
+      if (r.scene == sc && r.mean_de2000 <= 1.0 && r.code == "product" &&
           (!best || r.time_ms < best->time_ms))
         best = &r;
     const BenchRow* u81 = find_row(rep, sc, "uniform-81");
@@ -236,11 +279,11 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
     if (r.strategy == "first-pass")
       out.push_back("first pass " + r.scene + ": wall " + fmt("%.1f ms", r.time_ms) + idle(r) + ", ΔE " + fmt("%.2f", r.mean_de2000) +
                     " (≤ 33 ms & ≤ 5: " + (r.time_ms <= 33 && r.mean_de2000 <= 5 ? "MET" : "not met") + ")");
-  // Moonshot: ≤ 16 ms at ΔE ≤ 1 for the ideal-lens scenes: best strategy per scene.
+  // Moonshot: ≤ 16 ms at ΔE ≤ 1 for the ideal-lens scenes: best renderer strategy per scene (a
+  // bench-side Monte Carlo row can be lucky on a one-unit plate; it is not something the product does).
   std::map<std::string, const BenchRow*> best;
   for (const BenchRow& r : rep.rows) {
-    if (r.mean_de2000 > 1.0 || r.strategy.rfind("reference", 0) == 0 || r.scene.find("physical") != std::string::npos)
-      continue;
+    if (r.mean_de2000 > 1.0 || r.code != "product" || r.scene.find("physical") != std::string::npos) continue;
     const BenchRow*& b = best[r.scene];
     if (!b || r.time_ms < b->time_ms) b = &r;
   }
@@ -296,11 +339,12 @@ std::string frontier_markdown(const BenchReport& rep, const std::string& plot_fi
     // Cheapest strategy per scene reaching mean ΔE ≤ 1 (just noticeable) and ≤ 0.5.
     std::map<std::string, std::pair<const BenchRow*, const BenchRow*>> best;
     for (const BenchRow& r : rep.rows) {
-      if (r.strategy.rfind("reference", 0) == 0) continue;
+      if (r.code != "product") continue;  // what the renderer offers
       auto& b = best[r.scene];
       if (r.mean_de2000 <= 1.0 && (!b.first || r.cpu_ms < b.first->cpu_ms)) b.first = &r;
       if (r.mean_de2000 <= 0.5 && (!b.second || r.cpu_ms < b.second->cpu_ms)) b.second = &r;
     }
+    o << "Cheapest renderer strategy (by CPU time) per scene:\n\n";
     o << "| scene | cheapest with mean ΔE00 ≤ 1 (cpu ms) | cheapest with mean ΔE00 ≤ 0.5 (cpu ms) |\n|---|---|---|\n";
     for (const auto& [scene, b] : best)
       o << "| " << scene << " | " << (b.first ? b.first->strategy + " (" + fmt("%.0f", b.first->cpu_ms) + ")" : "none")
@@ -318,17 +362,24 @@ std::string frontier_markdown(const BenchReport& rep, const std::string& plot_fi
          "figures), 16–32 bands converge below 0.5; more only costs time.\n";
     o << "- **Thin plates and sections:** any spectral strategy that averages bands is exact enough; the cost is "
          "per-pixel bookkeeping, not optics (see profile.md).\n";
+    const BenchRow* rp = find_row(rep, "calcite-1mm-cono-physical", "renderer-physical");
     if (d1 && d3 && ideal)
-      o << "- **Lenses:** internal reflections beyond the first bounce are invisible: dT = 1 is within ΔE00 "
-        << fmt("%.2f", d1->mean_de2000) << " of dT = 5 and dT = 3 within " << fmt("%.2f", d3->mean_de2000)
-        << ", so `optics.lens_depth=1` is the right default; the lens model itself matters (ideal lenses are ΔE00 "
-        << fmt("%.1f", ideal->mean_de2000) << " from the SML model at NA 0.85), so `optics.lens_model=auto` should "
-           "pick the physical model for high-NA conoscopic figures.\n";
+      o << "- **Lens depth:** against the dT = 5 SML reference (same 128 bands), dT = 1 differs by mean ΔE00 "
+        << fmt("%.2f", d1->mean_de2000) << " (p95 " << fmt("%.2f", d1->p95_de2000) << ") and dT = 3 by "
+        << fmt("%.2f", d3->mean_de2000) << ": ghost light from internal reflections is "
+        << (d1->mean_de2000 < 1.0 ? "below the visible threshold, so `optics.lens_depth=1` is the right default"
+                                  : "visible, so keep dT ≥ 2")
+        << ". The lens model matters more: ideal lenses are ΔE00 " << fmt("%.1f", ideal->mean_de2000)
+        << " from the SML model at NA 0.85"
+        << (rp ? ", and the renderer's own physical model (s/p diattenuation only, in the ideal lens' polarization "
+                 "frame) ΔE00 " + fmt("%.1f", rp->mean_de2000) + " — see the report on the polarization frame"
+               : std::string())
+        << ".\n";
     if (sch && d3)
-      o << "- **Fresnel vs Schlick:** Schlick changes the figure by ΔE00 "
-        << fmt("%.2f", std::fabs(sch->mean_de2000 - d3->mean_de2000)) << " on top of the dT = 3 error (it knows no "
-           "s/p difference, which is what turns the polarization in a real lens): keep exact Fresnel, it costs no "
-           "measurable time.\n";
+      o << "- **Fresnel vs Schlick:** with Schlick the SML figure is ΔE00 " << fmt("%.2f", sch->mean_de2000)
+        << " from the Fresnel reference instead of " << fmt("%.2f", d3->mean_de2000)
+        << " (Schlick has no s/p difference, which is what turns the polarization in a real lens) at no saving in "
+           "time: keep exact Fresnel.\n";
   }
   o << "\n## Targets (issue 5)\n\n";
   for (const std::string& s : bench_targets(rep)) o << "- " << s << "\n";

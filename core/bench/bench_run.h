@@ -57,6 +57,9 @@ struct BenchReport {
 BenchReport run_bench(const BenchOptions& options, std::ostream& log);
 
 nlohmann::json bench_report_json(const BenchReport& report);
+// Reads back what bench_report_json wrote (to redraw the plot and markdown without re-running).
+// Throws InputError naming the file and key on a malformed report.
+BenchReport bench_report_from_json(const nlohmann::json& j, const std::string& file);
 std::string bench_table(const BenchReport& report);
 // The target lines of issue 5 (met, or the distance to them), as text lines.
 std::vector<std::string> bench_targets(const BenchReport& report);

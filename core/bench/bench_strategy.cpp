@@ -120,15 +120,18 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
     v.push_back({std::move(name), K::Product, std::move(set), 0});
   };
   if (bs.physical_lenses) {
-    // The lens-model axis: ideal vs physical, dT, Fresnel vs Schlick (all at converged spectra).
+    // The lens-model axis: ideal vs physical, dT, Fresnel vs Schlick. The bench-side SML rows use
+    // the reference's 128 bands, so that against the dT = 5 reference they measure the lens depth
+    // and the Fresnel model alone.
     product("ideal-lenses", {"optics.lens_model=ideal"});
     // The renderer's own physical model (depth-0 s/p profile of the same SML lens) and auto choice.
     product("renderer-physical", {"optics.lens_model=physical"});
     product("renderer-physical-schlick", {"optics.lens_model=physical", "optics.schlick=true"});
     product("renderer-auto-lenses", {"optics.lens_model=auto"});
     for (int dT : quick ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 5})
-      v.push_back({"sml-dT" + std::to_string(dT), K::PhysicalLens, {"optics.lens_depth=" + std::to_string(dT)}, 0});
-    v.push_back({"sml-dT3-schlick", K::PhysicalLens, {"optics.lens_depth=3", "optics.schlick=true"}, 0});
+      v.push_back({"sml-dT" + std::to_string(dT), K::PhysicalLens,
+                   {"optics.lens_depth=" + std::to_string(dT), "render.wavelengths=128"}, 0});
+    v.push_back({"sml-dT3-schlick", K::PhysicalLens, {"optics.lens_depth=3", "optics.schlick=true", "render.wavelengths=128"}, 0});
     return v;
   }
   product("uniform-81", {"render.strategy=exact", "render.wavelengths=81"});

@@ -64,7 +64,8 @@ constexpr Family kFamilies[] = {
     {"stratified", "stratified per pixel", {255, 127, 14}}, {"hero", "hero wavelength", {148, 103, 189}},
     {"modal", "modal fit, n bands", {44, 160, 44}},         {"auto", "renderer auto (converged)", {0, 0, 0}},
     {"first-pass", "first progressive pass", {140, 86, 75}}, {"reference", "reference, half samples", {127, 127, 127}},
-    {"ideal", "ideal lenses", {23, 190, 207}},              {"sml", "SML lenses dT / Schlick", {188, 189, 34}},
+    {"ideal", "ideal lenses", {23, 190, 207}},              {"sml", "bench SML lenses dT / Schlick", {188, 189, 34}},
+    {"renderer-", "renderer physical lenses", {227, 119, 194}},
 };
 
 const Family& family_of(const std::string& strategy) {
@@ -119,6 +120,7 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
   // Ranges (decades).
   double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
   for (const BenchRow& r : rep.rows) {
+    if (r.time_ms <= 0.0) continue;  // a reference read from the cache: no time to show
     tmin = std::min(tmin, std::max(r.time_ms, 0.01));
     tmax = std::max(tmax, std::max(r.time_ms, 0.01));
     emin = std::min(emin, std::max(r.mean_de2000, 1e-3));
@@ -174,7 +176,8 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
         }
     }
   };
-  for (const BenchRow& r : rep.rows) marker(X(r.time_ms), Y(r.mean_de2000), scene_index[r.scene], family_of(r.strategy).colour);
+  for (const BenchRow& r : rep.rows)
+    if (r.time_ms > 0.0) marker(X(r.time_ms), Y(r.mean_de2000), scene_index[r.scene], family_of(r.strategy).colour);
   // Legend.
   int ly = top;
   const int lx = right + 16;
