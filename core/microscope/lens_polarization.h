@@ -11,7 +11,7 @@
 // power transmissions). Amplitudes are relative to the axial ray, so the exposure reference
 // (Y = 1 on axis) is kept. Traced at 550 nm: the glass dispersion changes t_s/t_p by < 0.1 %
 // across the visible. Ghost paths (internal reflections, optics.lens_depth) leave the lens in
-// other directions and land elsewhere in the back focal plane; they are not part of this model.
+// other directions and land elsewhere in the back focal plane: core/microscope/lens_ghosts.h.
 #include <vector>
 
 #include <glm/mat2x2.hpp>

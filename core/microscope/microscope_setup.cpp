@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/materials/medium.h"
+#include "core/microscope/lens_ghosts.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/optical_train.h"
@@ -393,6 +394,19 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     if (n_exact > 0)
       report << "; exact Jones matrix for " << n_exact << " of " << S->units.size()
              << " evaluations near the optic axis of the optically active crystal";
+  }
+  if (S->lenses && scene.optics.lens_depth >= 2 && cono && scene.bertrand_in) {
+    LensGhostImage ghosts = lens_ghost_image(*S);
+    S->ghost_xyz = std::move(ghosts.xyz);
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i + 1 < S->pixel_offset.size(); ++i) lit += S->pixel_offset[i + 1] > S->pixel_offset[i];
+    std::snprintf(buf, sizeof buf,
+                  "; lens ghosts (dT = %d): %d paths, objective %.3f %% + condenser %.3f %% of a white field",
+                  scene.optics.lens_depth, ghosts.paths, 100.0 * ghosts.objective_energy / std::max<std::size_t>(1, lit),
+                  100.0 * ghosts.condenser_energy / std::max<std::size_t>(1, lit));
+    report << buf;
+  } else if (S->lenses && cono && scene.bertrand_in) {
+    report << "; lens ghosts: none (optics.lens_depth < 2: no internal reflection reaches the image)";
   }
   S->model_report = report.str();
   return S;

@@ -63,6 +63,10 @@ struct MicroscopeSetup {
   }
   std::string model_report;
   const LensPolarizationTable* lenses = nullptr;  // physical lens model; null = ideal
+  // Ghost light of the physical lenses (optics.lens_depth ≥ 2, conoscopic view; core/microscope/
+  // lens_ghosts.h): XYZ per pixel (mono: T, T, T) added to the direct light; empty = none.
+  // Computed once per setup, not per pass.
+  std::vector<float> ghost_xyz;
 
   // Condenser and objective Jones matrices for a direction (identity for ideal lenses).
   void lens_jones(const glm::dvec3& k_air, glm::dmat2& condenser, glm::dmat2& objective) const;

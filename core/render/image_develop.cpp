@@ -25,6 +25,8 @@ void develop_image(const MicroscopeSetup& S, const std::vector<glm::dvec3>& unit
         glm::dvec3 v(0.0);
         for (int k = S.pixel_offset[i]; k < S.pixel_offset[i + 1]; ++k)
           v += units[S.refs[k].unit] * static_cast<double>(S.refs[k].weight);
+        if (!S.ghost_xyz.empty())  // internal reflections of the physical lenses, precomputed
+          v += glm::dvec3(S.ghost_xyz[3 * i], S.ghost_xyz[3 * i + 1], S.ghost_xyz[3 * i + 2]);
         glm::dvec3 xyz, rgb;
         if (mono) {
           xyz = white * v.y;
