@@ -104,3 +104,40 @@ TEST(MichelLevy, HighOrderPlateAveragesToWhiteWithoutAliasing) {
   // Neutral: chroma below 2 CIELAB units (invisible next to the first-order colours, C* > 20).
   EXPECT_LT(std::hypot(lab.y, lab.z), 2.0);
 }
+
+TEST(MichelLevyChart, BirefringenceLinesFollowRetardationEqualsThicknessTimesBirefringence) {
+  const double max_nm = 1800.0, max_um = 50.0;
+  const auto lines = michel_levy_lines(max_nm, max_um);
+  ASSERT_EQ(lines.size(), michel_levy_standard_birefringences().size());
+  for (const MichelLevyLine& l : lines) {
+    SCOPED_TRACE(l.label);
+    // Γ[nm] = 1000·d[µm]·Δn (the definition of retardation); 1e-9 relative: rounding only.
+    EXPECT_NEAR(l.to.x, 1000.0 * l.to.y * l.birefringence, 1e-9 * l.to.x);
+    // The line ends on the chart's top edge (d = 50 µm) or, for large Δn, on its right edge.
+    if (l.ends_on_top) {
+      EXPECT_DOUBLE_EQ(l.to.y, max_um);
+      EXPECT_LE(l.to.x, max_nm);
+    } else {
+      EXPECT_DOUBLE_EQ(l.to.x, max_nm);
+      EXPECT_LT(l.to.y, max_um);
+    }
+    EXPECT_EQ(std::stod(l.label), l.birefringence);
+  }
+  // Quartz (Δn 0.009) in a 30 µm section shows first-order white-yellow Γ ≈ 270 nm; 0.010 ends at
+  // Γ = 500 nm on the top edge, calcite's 0.172 is far off the top (right edge at d ≈ 10.5 µm).
+  const auto q = michel_levy_lines(max_nm, max_um, {0.010, 0.172});
+  EXPECT_TRUE(q[0].ends_on_top);
+  EXPECT_NEAR(q[0].to.x, 500.0, 1e-9);
+  EXPECT_FALSE(q[1].ends_on_top);
+  EXPECT_NEAR(q[1].to.y, 1800.0 / 172.0, 1e-9);
+  // Drawn: the pixel on the Δn = 0.010 line at d = 25 µm (Γ = 250 nm) is darker than the plain
+  // chart's; a pixel far from every line is unchanged.
+  const int w = 360, h = 100;
+  const auto plain = michel_levy_chart(w, h, max_nm);
+  const auto drawn = michel_levy_chart_with_lines(w, h, max_nm, max_um, Illuminant::D65, {0.010});
+  const int x = static_cast<int>(250.0 / max_nm * w), y = static_cast<int>((1.0 - 25.0 / max_um) * h);
+  const std::size_t on = (static_cast<std::size_t>(y) * w + x) * 3 + 1;
+  EXPECT_LT(drawn[on], 0.5f * plain[on]);
+  const std::size_t off = (static_cast<std::size_t>(10) * w + 300) * 3 + 1;
+  EXPECT_EQ(drawn[off], plain[off]);
+}
