@@ -13,6 +13,7 @@
 
 #include "core/microscope/microscope_setup.h"
 #include "core/microscope/scene_check.h"
+#include "core/microscope/view_geometry.h"
 #include "core/render/image_develop.h"
 #include "core/render/spectral_level.h"
 #include "core/spectrum/cie.h"
@@ -64,9 +65,117 @@ double unit_error(const MicroscopeSetup& S, const std::vector<double>& area,
 // after every pass. Progressive (the UI): every level is a full image, starting coarse. Final
 // (pmsim-render): the first level is only computed on a subset of the units, enough to estimate
 // the error of the next, full level. Returns false when cancelled.
+// The first pass of a large conoscopic figure (what a UI shows the moment a control moves): the
+// per-pixel set-up (three mode solutions per pixel) dominates it, so it runs on a grid 4× coarser
+// each way with 16 bands and is spread bilinearly over the lit pixels; the full-resolution passes
+// follow. The figure is smooth on that scale except near its dark isochromes, which the next pass
+// restores.
+constexpr int kPreviewFactor = 4;
+constexpr int kPreviewBands = 16;
+constexpr long long kPreviewMinPixels = 256LL * 256LL;
+
+bool wants_preview(const Scene& scene) {
+  return scene.mode == ViewMode::Cono && scene.bertrand_in &&
+         static_cast<long long>(scene.render.width) * scene.render.height >= kPreviewMinPixels;
+}
+
+// Returns false when cancelled.
+template <class Publish>
+bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::time_point t0,
+                 std::uint64_t generation, Publish&& publish) {
+  Scene c = scene;
+  const int W = scene.render.width, H = scene.render.height;
+  c.render.width = std::max(1, (W + kPreviewFactor - 1) / kPreviewFactor);
+  c.render.height = std::max(1, (H + kPreviewFactor - 1) / kPreviewFactor);
+  const int cw = c.render.width, ch = c.render.height;
+  auto setup = build_setup(c, &cancel);
+  if (!setup || cancel) return false;
+  const MicroscopeSetup& S = *setup;
+  const int fixed = scene.render.wavelengths;
+  const SpectralLevel level = make_spectral_level(S, fixed > 0 ? std::min(fixed, kPreviewBands) : kPreviewBands);
+  std::vector<glm::dvec3> units(S.units.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      if (cancel.load(std::memory_order_relaxed)) return;
+                      for (std::size_t u = r.begin(); u != r.end(); ++u)
+                        units[u] = evaluate_unit(S, level, static_cast<int>(u));
+                    });
+  if (cancel) return false;
+  RenderImage coarse;
+  develop_image(S, units, level.monochromatic, coarse);
+  RenderImage img;
+  img.width = W;
+  img.height = H;
+  img.rgb.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
+  img.xyz.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
+  auto lit = [&](int x, int y) {
+    const std::size_t i = static_cast<std::size_t>(y) * cw + x;
+    return S.pixel_offset[i + 1] > S.pixel_offset[i];
+  };
+  const double half_c = 0.5 * std::min(cw, ch);
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < W; ++x) {
+        const glm::dvec2 f = field_from_pixel(W, H, x + 0.5, y + 0.5);
+        glm::dvec3 k;
+        if (!bfp_direction(scene, f, k)) continue;  // outside the lit disk: black
+        // The same field point on the coarse grid (pixel centres at i + 0.5).
+        const double gx = f.x * half_c + 0.5 * cw - 0.5, gy = 0.5 * ch - f.y * half_c - 0.5;
+        const int x0 = static_cast<int>(std::floor(gx)), y0 = static_cast<int>(std::floor(gy));
+        const double fx = gx - x0, fy = gy - y0;
+        double wsum = 0.0;
+        float acc[6] = {0, 0, 0, 0, 0, 0};
+        int nx = std::clamp(static_cast<int>(std::lround(gx)), 0, cw - 1), ny = std::clamp(static_cast<int>(std::lround(gy)), 0, ch - 1);
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const int xx = x0 + dx, yy = y0 + dy;
+            if (xx < 0 || yy < 0 || xx >= cw || yy >= ch || !lit(xx, yy)) continue;  // only lit samples
+            const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
+            if (w <= 0) continue;
+            const std::size_t j = 3 * (static_cast<std::size_t>(yy) * cw + xx);
+            for (int c3 = 0; c3 < 3; ++c3) {
+              acc[c3] += static_cast<float>(w) * coarse.rgb[j + c3];
+              acc[3 + c3] += static_cast<float>(w) * coarse.xyz[j + c3];
+            }
+            wsum += w;
+          }
+        const std::size_t i = 3 * (static_cast<std::size_t>(y) * W + x);
+        if (wsum > 0) {
+          for (int c3 = 0; c3 < 6; ++c3) acc[c3] /= static_cast<float>(wsum);
+        } else {  // at the rim: the nearest coarse sample
+          const std::size_t j = 3 * (static_cast<std::size_t>(ny) * cw + nx);
+          for (int c3 = 0; c3 < 3; ++c3) {
+            acc[c3] = coarse.rgb[j + c3];
+            acc[3 + c3] = coarse.xyz[j + c3];
+          }
+        }
+        for (int c3 = 0; c3 < 3; ++c3) {
+          img.rgb[i + c3] = acc[c3];
+          img.xyz[i + c3] = acc[3 + c3];
+        }
+      }
+  });
+  img.error_estimate = 100.0;
+  img.wavelengths = level.n;
+  img.passes = 1;
+  img.generation = generation;
+  img.samples_per_pixel = static_cast<double>(level.n) / (kPreviewFactor * kPreviewFactor);
+  img.model_report = "preview: 1/" + std::to_string(kPreviewFactor) + " resolution, " + std::to_string(level.n) +
+                     " bands; " + S.model_report;
+  img.converged = false;
+  img.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  publish(std::move(img), false);
+  return !cancel;
+}
+
 template <class Publish>
 bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time_point t0,
                 std::uint64_t generation, bool progressive, Publish&& publish) {
+  int passes = 0;
+  if (progressive && wants_preview(scene)) {
+    if (!run_preview(scene, cancel, t0, generation, publish)) return false;
+    passes = 1;
+  }
   auto setup = build_setup(scene, &cancel);
   if (!setup) return false;
   const MicroscopeSetup& S = *setup;
@@ -76,7 +185,6 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time
   for (const PixelRef& r : S.refs) area[r.unit] += r.weight;
   std::vector<glm::dvec3> prev(n_units), units(n_units);
   std::size_t prev_stride = 0;  // 0: no previous level
-  int passes = 0;
   const bool mono = scene.render.single_wavelength_nm > 0;
   const bool one_level = fixed > 0 || mono;
   for (int bands = one_level ? std::max(1, fixed) : (progressive ? kFirstBands : 2 * kFirstBands);; bands *= 2) {
