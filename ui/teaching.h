@@ -14,10 +14,16 @@
 namespace pmsim::ui {
 
 struct App::Teaching {
+  // The probe runs off the UI thread (the first probe of a thin section loads its map).
+  struct ProbeResult {
+    PixelProbe probe;
+    std::string error;
+  };
   PixelProbe probe;
   std::string probe_error;
-  std::uint64_t probe_generation = ~0ull;
+  std::uint64_t probe_generation = ~0ull;  // what `probe` (or the job in flight) was asked for
   float probe_x = -1, probe_y = -1;
+  std::future<ProbeResult> probe_job;
   std::vector<float> spectrum;  // probe.transmission as floats for the plot
 
   FigureInfo figure;

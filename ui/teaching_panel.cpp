@@ -89,18 +89,27 @@ void App::draw_teaching() {
                    ImGuiWindowFlags_NoSavedSettings);
   Teaching& t = *teaching_;
   // The probe follows the cursor over the field; elsewhere it stays where the cursor left it.
-  if (t.probe_generation != generation_ || t.probe_x != probe_x_ || t.probe_y != probe_y_) {
+  if (t.probe_job.valid() &&
+      t.probe_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    Teaching::ProbeResult r = t.probe_job.get();
+    t.probe = std::move(r.probe);
+    t.probe_error = std::move(r.error);
+    t.spectrum.assign(t.probe.transmission.begin(), t.probe.transmission.end());
+  }
+  if (!t.probe_job.valid() &&
+      (t.probe_generation != generation_ || t.probe_x != probe_x_ || t.probe_y != probe_y_)) {
     t.probe_generation = generation_;
     t.probe_x = probe_x_;
     t.probe_y = probe_y_;
-    try {
-      t.probe = probe_pixel(scene_, probe_x_, probe_y_);
-      t.probe_error.clear();
-    } catch (const std::exception& e) {
-      t.probe = PixelProbe{};
-      t.probe_error = e.what();
-    }
-    t.spectrum.assign(t.probe.transmission.begin(), t.probe.transmission.end());
+    t.probe_job = std::async(std::launch::async, [scene = scene_, x = probe_x_, y = probe_y_] {
+      Teaching::ProbeResult r;
+      try {
+        r.probe = probe_pixel(scene, x, y);
+      } catch (const std::exception& e) {
+        r.error = e.what();
+      }
+      return r;
+    });
   }
   const PixelProbe& p = t.probe;
   ImGui::Text("At the %s (%.2f, %.2f)", probe_hovered_ ? "cursor" : "probe", probe_x_, probe_y_);
