@@ -1,5 +1,6 @@
 #include "core/microscope/scene_check.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +25,17 @@ std::string num(double v) {
   }
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
+}
+// "[x,y,z]" (appending, not "[" + …: GCC 12 warns falsely on that pattern, PR 105651).
+std::string vec_text(const std::array<double, 3>& v) {
+  std::string t = "[";
+  t += num(v[0]);
+  t += ',';
+  t += num(v[1]);
+  t += ',';
+  t += num(v[2]);
+  t += ']';
+  return t;
 }
 }  // namespace
 
@@ -65,7 +77,7 @@ void check_scene(const Scene& s, const std::string& file) {
     const auto& a = *v;
     const double len2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
     require(std::isfinite(len2) && len2 > 1e-24, file, key,
-            "[" + num(a[0]) + "," + num(a[1]) + "," + num(a[2]) + "]",
+            vec_text(a),
             "a direction cannot be the zero vector");
   }
   {
@@ -76,7 +88,7 @@ void check_scene(const Scene& s, const std::string& file) {
     const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
     const double lz = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
     require(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-9 * lx * lz, file, "sample.x_axis",
-            "[" + num(x[0]) + "," + num(x[1]) + "," + num(x[2]) + "]",
+            vec_text(x),
             "must not be parallel to sample.z_axis");
   }
   if (s.sample.crystal) {
