@@ -15,8 +15,8 @@
 //   reflected s and p waves; at exit the transmitted s and p waves and the two backward modes.
 //   Each is a 4×4 real linear system. Multiple reflections inside the plate are neglected (their
 //   power is ~R² ≈ 1e-6 of the direct wave); so |J|² ≤ 1 without absorption.
-//   With fresnel = false the incident field is decomposed on the mode D directions (TE/TM
-//   coordinates) and recomposed from them, lossless.
+//   With fresnel = false the incident field is decomposed on the orthogonal basis nearest to the
+//   mode D directions (TE/TM coordinates) and recomposed from it, lossless.
 // * TE/TM coordinates: s = unit(ẑ × k), p = s × k; the same (p, s) components describe the field
 //   outside relative to k_air, so the Jones matrix is returned in transverse_basis(k_air) after a
 //   rotation from (p, s).
@@ -257,16 +257,29 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
 
   const ModePair f = find_modes(P, qx, qy, q2, s_hat, +1.0);
   if (!P.fresnel) {
-    // Lossless decomposition on the mode D directions: tin = P⁻¹, tout = P, P = [[dp0, dp1], [ds0, ds1]].
-    const double det = f.dp[0] * f.ds[1] - f.dp[1] * f.ds[0];
-    out.tin[0][0] = f.ds[1] / det;
-    out.tin[0][1] = -f.dp[1] / det;
-    out.tin[1][0] = -f.ds[0] / det;
-    out.tin[1][1] = f.dp[0] / det;
-    out.tout[0][0] = f.dp[0];
-    out.tout[0][1] = f.dp[1];
-    out.tout[1][0] = f.ds[0];
-    out.tout[1][1] = f.ds[1];
+    // Lossless: the mode D directions P = [[dp0, dp1], [ds0, ds1]] (columns, in (p, s)) are skew
+    // at oblique incidence, and P⁻¹ … P would not be unitary (gains up to 9 % for calcite at
+    // θ = 84°). Use the nearest orthogonal basis instead, Q = P·(PᵀP)^(−1/2) (Löwdin symmetric
+    // orthogonalisation), so that tin = Qᵀ, tout = Q and |J|² ≤ 1 exactly.
+    const double a = f.dp[0] * f.dp[0] + f.ds[0] * f.ds[0];
+    const double b = f.dp[0] * f.dp[1] + f.ds[0] * f.ds[1];
+    const double c = f.dp[1] * f.dp[1] + f.ds[1] * f.ds[1];
+    // √M = (M + √det·I)/√(tr M + 2√det) for a 2×2 SPD matrix M; then invert it.
+    const double sdet = std::sqrt(std::max(a * c - b * b, 0.0));
+    const double tr = std::sqrt(std::max(a + c + 2.0 * sdet, 1e-300));
+    const double ra = (a + sdet) / tr, rb = b / tr, rc = (c + sdet) / tr;  // √M
+    const double rdet = std::max(ra * rc - rb * rb, 1e-300);
+    const double ia = rc / rdet, ib = -rb / rdet, ic = ra / rdet;          // M^(−1/2)
+    const double q00 = f.dp[0] * ia + f.dp[1] * ib, q01 = f.dp[0] * ib + f.dp[1] * ic;
+    const double q10 = f.ds[0] * ia + f.ds[1] * ib, q11 = f.ds[0] * ib + f.ds[1] * ic;
+    out.tout[0][0] = q00;
+    out.tout[0][1] = q01;
+    out.tout[1][0] = q10;
+    out.tout[1][1] = q11;
+    out.tin[0][0] = q00;
+    out.tin[0][1] = q10;
+    out.tin[1][0] = q01;
+    out.tin[1][1] = q11;
   } else {
     const ModePair b = find_modes(P, qx, qy, q2, s_hat, -1.0);
     // Grazing in the outer medium (k_z → 0): incident and reflected waves coincide and nothing
