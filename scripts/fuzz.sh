@@ -32,24 +32,29 @@ for t in "${targets[@]}"; do
   PMSIM_FUZZ_MAKE_SEEDS="$corpus" "$build/tests/fuzz/fuzz_$t"
   regressions="$root/tests/fuzz/regressions/$t"
   mkdir -p "$regressions"
-  before=$(ls "$artifacts" | wc -l)
-  # New corpus units go to the first folder only; regressions are read, never written.
+  # Past findings seed the corpus too, except open ones (DISABLED_*: they would stop the run at
+  # once; the fuzzer is expected to rediscover them and keeps the new input as an artifact).
+  for f in "$regressions"/*; do
+    case "$(basename "$f")" in DISABLED_*|README.md) continue ;; esac
+    [ -f "$f" ] && cp "$f" "$corpus/regression_$(basename "$f")"
+  done
+  ls "$artifacts" >"$build/artifacts_before_$t.txt"
   set +e
-  "$build/tests/fuzz/fuzz_$t" "$corpus" "$regressions" -max_total_time="$seconds" -timeout=10 \
+  "$build/tests/fuzz/fuzz_$t" "$corpus" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=2048 -max_len=4096 -artifact_prefix="$artifacts/" -print_final_stats=1 \
     -close_fd_mask=1 2>"$build/fuzz_$t.log"
   rc=$?
   set -e
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$build/fuzz_$t.log" | grep -o '[0-9]*$' || echo "?")
   cov=$(grep -o 'cov: [0-9]*' "$build/fuzz_$t.log" | tail -1 | grep -o '[0-9]*' || echo "?")
-  new=$(( $(ls "$artifacts" | wc -l) - before ))
+  ls "$artifacts" | grep -vxF -f "$build/artifacts_before_$t.txt" >"$build/artifacts_new_$t.txt" || true
+  new=$(wc -l <"$build/artifacts_new_$t.txt")
   echo "fuzz: $t: ${seconds} s, $execs inputs, coverage $cov edges, $new new finding(s), exit $rc"
   if [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
     found=1
-    for f in "$artifacts"/*; do
-      [ -e "$f" ] || continue
-      cp -n "$f" "$regressions/" && echo "fuzz: kept $regressions/$(basename "$f")"
-    done
+    while read -r name; do
+      cp -n "$artifacts/$name" "$regressions/" && echo "fuzz: kept $regressions/$name"
+    done <"$build/artifacts_new_$t.txt"
     grep -m3 -E 'ERROR|oracle|runtime error' "$build/fuzz_$t.log" || true
   fi
 done

@@ -44,7 +44,9 @@ class TraceCli : public ::testing::Test {
                                                           {"--dir", "0,0,1"},
                                                           {"--pol", "1,0,0"},
                                                           {"--wavelength-nm", "550"}};
-    for (const auto& [k, v] : changes) {
+    for (const auto& change : changes) {  // (no structured binding: clang 14 cannot capture one)
+      const std::string& k = change.first;
+      const std::string& v = change.second;
       auto it = std::find_if(a.begin(), a.end(), [&](const auto& p) { return p.first == k; });
       if (it != a.end()) {
         if (v == "<drop>") a.erase(it);
@@ -79,6 +81,14 @@ TEST_F(TraceCli, TheDocumentedExampleTraces) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_FALSE(j["rays"].empty());
+}
+
+TEST_F(TraceCli, NonUnitVectorsAreNormalised) {
+  // --dir and --pol are directions: any positive length means the same ray.
+  const CommandResult a = trace({});
+  const CommandResult b = trace({{"--dir", "0,0,7"}, {"--pol", "0.001,0,0"}});
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(a.out, b.out);
 }
 
 TEST_F(TraceCli, BadVectorsAndNumbersExitTwoNamingTheOption) {

@@ -82,7 +82,9 @@ TEST(AtomicWrite, AWriterThatFailsHalfWayLeavesTheOldFileAndNoTemporary) {
 
 TEST(AtomicWrite, SuccessfulWritesReplaceTheFileAndLeaveNoTemporary) {
   ScratchDir d;
-  for (const auto& [kind, write] : writers(100, 4)) {
+  for (const auto& entry : writers(100, 4)) {  // (no structured bindings: clang 14 lambdas)
+    const std::string& kind = entry.first;
+    const auto& write = entry.second;
     SCOPED_TRACE(kind);
     const std::string target = d.file("out." + ext_for(kind), "old");
     write(target);
@@ -96,7 +98,9 @@ TEST(AtomicWrite, SuccessfulWritesReplaceTheFileAndLeaveNoTemporary) {
 TEST(AtomicWrite, AnUnwritableFolderFailsNamingThePathAndChangesNothing) {
   ScratchDir d;
   const std::string blocker = d.file("not_a_folder", "a regular file");
-  for (const auto& [kind, write] : writers(100, 4)) {
+  for (const auto& entry : writers(100, 4)) {  // (no structured bindings: clang 14 lambdas)
+    const std::string& kind = entry.first;
+    const auto& write = entry.second;
     SCOPED_TRACE(kind);
     const std::string target = blocker + "/out." + ext_for(kind);
     expect_write_error([&] { write(target); }, target);
@@ -156,7 +160,9 @@ class FullDisk : public ::testing::Test {
 
 void FullDisk::check_write_fails_cleanly(const std::string& kind) {
   std::cerr << (mounted_ ? "full disk: 64 KiB tmpfs, filled\n" : "full disk: RLIMIT_FSIZE 8 bytes\n");
-  for (const auto& [k, write] : writers(4096, 64)) {
+  for (const auto& entry : writers(4096, 64)) {
+    const std::string& k = entry.first;
+    const auto& write = entry.second;
     if (k != kind) continue;
     const std::string target = (dir_ / ("saved." + ext_for(kind))).string();
     { std::ofstream(target) << "the user's previous file"; }
@@ -181,7 +187,9 @@ TEST_F(FullDisk, WritesSucceedAgainOnceThereIsRoom) {
   // The failure above is the disk's, not the path's: with room again the same writes succeed.
   fill();
   unfill();
-  for (const auto& [kind, write] : writers(4096, 64)) {
+  for (const auto& entry : writers(4096, 64)) {
+    const std::string& kind = entry.first;
+    const auto& write = entry.second;
     SCOPED_TRACE(kind);
     const std::string target = (dir_ / ("saved." + ext_for(kind))).string();
     EXPECT_NO_THROW(write(target));

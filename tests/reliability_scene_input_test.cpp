@@ -215,6 +215,15 @@ TEST(SetOption, AnUnknownMineralIsRefusedWhateverTheSampleType) {
   EXPECT_INPUT_ERROR(apply_setting(s, "sample.mineral=unobtainium"), "sample.mineral", "unobtainium");
 }
 
+TEST(SetOption, NonUtf8TextIsRefused) {
+  // Found by the scene_setting fuzzer: a string key took bytes that are not UTF-8; saving the
+  // scene (or writing it into image metadata) then threw a JSON type_error. Finding F10.
+  Scene s;
+  EXPECT_INPUT_ERROR(apply_setting(s, "sample.section=\xff\xfe" "basalt"), "sample.section", "basalt");
+  const nlohmann::json before = scene_to_json(s);
+  EXPECT_NO_THROW(before.dump());
+}
+
 TEST(SetOption, ValidValuesAtTheEdgesOfTheirRangesAreAccepted) {
   // The guards must not reject the legitimate extremes a student will try.
   Scene s;

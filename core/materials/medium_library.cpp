@@ -161,12 +161,13 @@ Medium load_medium_file(const std::string& path) {
   // shows up here); sampled each nm of the visible range, at the range ends and at 256
   // log-spaced wavelengths across the range.
   {
-    std::vector<double> probe = {m.min_wavelength_nm()};
-    if (std::isfinite(m.max_wavelength_nm())) probe.push_back(m.max_wavelength_nm());
+    std::vector<double> probe;
     for (double nm = 380.0; nm <= 780.0; nm += 1.0) {
       if (nm >= m.min_wavelength_nm() && nm <= m.max_wavelength_nm()) probe.push_back(nm);
     }
     const std::size_t visible_probes = probe.size();
+    probe.push_back(m.min_wavelength_nm());
+    if (std::isfinite(m.max_wavelength_nm())) probe.push_back(m.max_wavelength_nm());
     if (m.min_wavelength_nm() > 0.0 && std::isfinite(m.max_wavelength_nm())) {
       const double ratio = m.max_wavelength_nm() / m.min_wavelength_nm();
       for (int k = 1; k < 256; ++k) probe.push_back(m.min_wavelength_nm() * std::pow(ratio, k / 256.0));

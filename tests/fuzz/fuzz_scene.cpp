@@ -41,11 +41,12 @@ void check_round_trip(const Scene& s, const char* who) {
     validate_scene(s, "");
     back = scene_from_json(nlohmann::json::parse(j.dump()), "round-trip", &warnings);
   } catch (const std::exception& e) {
-    fail(std::string(who) + ": an accepted scene does not load back: " + e.what() + "\n" + j.dump());
+    fail(std::string(who) + ": an accepted scene does not load back: " + e.what() + "\n" +
+         j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
   if (!warnings.empty()) fail(std::string(who) + ": saving then loading warns: " + warnings.front());
   const nlohmann::json j2 = scene_to_json(back);
-  check(j2 == j, std::string(who) + ": save → load changes the scene:\n" + j.dump() + "\n" + j2.dump());
+  check(j2 == j, std::string(who) + ": save → load changes the scene:\n" + j.dump() + "\n" + j2.dump());  // both dumped fine above
 }
 
 std::vector<std::filesystem::path> json_files(const std::filesystem::path& dir) {
