@@ -242,14 +242,15 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S) {
             // Objective ghost: condenser (depth 0) → sample along k → ghost path to k_g.
             if (hits[i].in_objective) {
               const JonesMatrix G = path_jones(k, hits[i].kg, s_hat, a_s, a_p);
-              const JonesMatrix M = G * J * real_jones(lc);
+              // The Bertrand side sees the ghost in the lab frame: the aplanatic mapping of k_g.
+              const JonesMatrix M = real_jones(glm::transpose(aplanatic_frame(hits[i].kg))) * G * J * real_jones(lc);
               for (int o = 0; o < t.outputs; ++o) amp_obj[i * t.outputs + o] = jones_output(t, M, o).x;
             }
             // Condenser ghost (reciprocal path): aperture direction k_g → specimen along k →
             // sample → objective (depth 0) → this cell.
             if (hits[i].in_condenser) {
               const JonesMatrix G = path_jones(hits[i].kg, k, s_hat, a_s, a_p);
-              const JonesMatrix M = real_jones(lo) * J * G;
+              const JonesMatrix M = real_jones(lo) * J * G * real_jones(aplanatic_frame(hits[i].kg));
               for (int o = 0; o < t.outputs; ++o) amp_cond[i * t.outputs + o] = jones_output(t, M, o).x;
             }
           }

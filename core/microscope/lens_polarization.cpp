@@ -83,6 +83,20 @@ glm::dmat2 LensPolarizationTable::jones(const glm::dvec3& k) const {
   return m;
 }
 
+glm::dmat2 aplanatic_frame(const glm::dvec3& k) {
+  const double s = std::hypot(k.x, k.y);
+  if (s < 1e-12) return glm::dmat2(1.0);
+  const double cphi = k.x / s, sphi = k.y / s, cth = k.z;
+  const glm::dvec3 p3{cth * cphi, cth * sphi, -s}, s3{-sphi, cphi, 0.0};
+  glm::dvec3 a, b;
+  transverse_basis(k, a, b);
+  // (x, y) → (radial, azimuthal) components → p3·radial + s3·azimuthal, in (a, b).
+  // glm is column-major: m[col][row]; column j is the image of the lab basis vector j.
+  const glm::dvec2 p{glm::dot(p3, a), glm::dot(p3, b)}, q{glm::dot(s3, a), glm::dot(s3, b)};
+  const glm::dvec2 image_x = cphi * p - sphi * q, image_y = sphi * p + cphi * q;
+  return glm::dmat2(image_x, image_y);
+}
+
 const LensPolarizationTable& lens_polarization_table(bool schlick) {
   static LensPolarizationTable tables[2];
   static std::once_flag once[2];

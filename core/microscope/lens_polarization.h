@@ -27,6 +27,13 @@ struct LensPolarizationTable {
   glm::dmat2 jones(const glm::dvec3& k_air) const;
 };
 
+// The polarization mapping of an ideal, aplanatic lens (Richards & Wolf, Proc. R. Soc. A 253, 358
+// (1959)): a ray crossing the pupil at azimuth φ keeps its radial (p) and azimuthal (s) field
+// components while the lens tilts it to k_air. Returns the real rotation from the lab pupil basis
+// (x̂, ŷ) to transverse_basis(k_air); its transpose maps back (the objective). Identity on the
+// axis and in the planes φ = 0°, 90° (so isogyres stay on the polarizer and analyzer).
+glm::dmat2 aplanatic_frame(const glm::dvec3& k_air);
+
 // Traced once per Fresnel model (cached). Throws InputError if the lens asset is missing.
 const LensPolarizationTable& lens_polarization_table(bool schlick);
 

@@ -68,18 +68,24 @@ PreparedPlate MicroscopeSetup::prepare(int domain, double wavelength_nm) const {
 }
 
 void MicroscopeSetup::lens_jones(const glm::dvec3& k, glm::dmat2& c, glm::dmat2& o) const {
+  // Condenser: lab pupil → the ray's transverse basis (aplanatic mapping), then the physical
+  // lens' s/p diattenuation; the objective the reverse. Same profile for both (reciprocity).
+  const glm::dmat2 F = aplanatic_frame(k);
   if (!lenses) {
-    c = o = glm::dmat2(1.0);
+    c = F;
+    o = glm::transpose(F);
     return;
   }
-  c = o = lenses->jones(k);
+  const glm::dmat2 D = lenses->jones(k);
+  c = D * F;
+  o = glm::transpose(F) * D;
 }
 
 JonesMatrix MicroscopeSetup::with_lenses(const JonesMatrix& J, const glm::dvec3& k) const {
-  if (!lenses) return J;
-  const glm::dmat2 m = lenses->jones(k);  // same profile for condenser and objective (reciprocity)
-  const JonesMatrix L{m[0][0], m[1][0], m[0][1], m[1][1]};
-  return L * J * L;
+  glm::dmat2 c, o;
+  lens_jones(k, c, o);
+  const JonesMatrix C{c[0][0], c[1][0], c[0][1], c[1][1]}, O{o[0][0], o[1][0], o[0][1], o[1][1]};
+  return O * J * C;
 }
 
 namespace {
@@ -111,9 +117,11 @@ double lens_model_difference(const MicroscopeSetup& S, const LensPolarizationTab
         p.thickness_um = unit.thickness_um;
         J = plate_jones(p, k);
       }
-      const glm::dmat2 m = table.jones(k);
-      const JonesMatrix L{m[0][0], m[1][0], m[0][1], m[1][1]};
-      const double ideal = jones_transmission(train, J), physical = jones_transmission(train, L * J * L);
+      const glm::dmat2 F = aplanatic_frame(k), Ft = glm::transpose(F), m = table.jones(k);
+      const glm::dmat2 c = m * F, o = Ft * m;
+      const JonesMatrix Ci{F[0][0], F[1][0], F[0][1], F[1][1]}, Oi{Ft[0][0], Ft[1][0], Ft[0][1], Ft[1][1]};
+      const JonesMatrix C{c[0][0], c[1][0], c[0][1], c[1][1]}, O{o[0][0], o[1][0], o[0][1], o[1][1]};
+      const double ideal = jones_transmission(train, Oi * J * Ci), physical = jones_transmission(train, O * J * C);
       sum += std::fabs(lightness(ideal) - lightness(physical));
       ++n;
     }
@@ -366,8 +374,8 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
                           for (int d = 0; d < S->dirs_of(unit); ++d) {
                             glm::dmat2 jc, jo;
                             S->lens_jones(S->dir(unit, d), jc, jo);
-                            const glm::dmat2* pc = S->lenses ? &jc : nullptr;
-                            const glm::dmat2* po = S->lenses ? &jo : nullptr;
+                            const glm::dmat2* pc = &jc;
+                            const glm::dmat2* po = &jo;
                             if (!dom.crystal || unit.thickness_um <= 0.0) {
                               S->terms[u * D + d] = identity_modal_terms(train, pc, po);
                               continue;
