@@ -47,6 +47,17 @@ void ModalFit::fit(const PreparedPlate anchors[3], const glm::dvec3& k_air) {
   }
 }
 
+void ModalFit::assign(const double gamma_nm[3], const glm::dvec2 e1[3], const glm::dvec2 e2[3],
+                      const double t1[3], const double t2[3]) {
+  for (int i = 0; i < 3; ++i) {
+    gamma_[i] = gamma_nm[i];
+    e1_[i] = e1[i];
+    e2_[i] = e2[i];
+    t1_[i] = t1[i];
+    t2_[i] = t2[i];
+  }
+}
+
 ModalPoint ModalFit::at(double wavelength_nm, double s) const {
   double L[3], dL[3];
   lagrange(x_of(wavelength_nm), L, dL);

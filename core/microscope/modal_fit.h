@@ -24,6 +24,16 @@ class ModalFit {
   // (retardation ∝ thickness; transmissions as t^scale, absorption dominating thickness effects).
   ModalPoint at(double wavelength_nm, double thickness_scale = 1.0) const;
   double retardation_nm(double wavelength_nm) const;
+  // A fit known otherwise (e.g. interpolated from a table of fits): Γ, the mode directions in
+  // transverse_basis(k_air) and the transmissions at the three anchors.
+  void assign(const double gamma_nm[3], const glm::dvec2 e1[3], const glm::dvec2 e2[3],
+              const double t1[3], const double t2[3]);
+  // The raw anchor values (what assign takes).
+  double gamma_at_anchor(int a) const { return gamma_[a]; }
+  const glm::dvec2& e1_at_anchor(int a) const { return e1_[a]; }
+  const glm::dvec2& e2_at_anchor(int a) const { return e2_[a]; }
+  double t1_at_anchor(int a) const { return t1_[a]; }
+  double t2_at_anchor(int a) const { return t2_[a]; }
 
  private:
   friend ModalTerms make_modal_terms(const ModalFit&, const TrainState&, double, const glm::dmat2*,
