@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/render/band_integral.h"
 #include "core/spectrum/cie.h"
@@ -52,6 +53,21 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
     L.anchor_w.push_back(w);
     L.anchor_dw.push_back(dw);
   }
+  const int padded = L.n + (L.n & 1);  // the modal kernel takes two bands at a time
+  for (int a = 0; a < 3; ++a) {
+    L.aw[a].assign(padded, 0.0);   // zero weights: the padding band contributes nothing
+    L.adw[a].assign(padded, 0.0);
+  }
+  L.inv_nm.assign(padded, 1.0 / L.nm.back());
+  for (int i = 0; i < L.n; ++i) {
+    L.inv_nm[i] = 1.0 / L.nm[i];
+    L.moment6h.push_back(L.band_nm > 0 ? L.moment[i] * (6.0 / L.band_nm) : glm::dvec3(0.0));
+    for (int a = 0; a < 3; ++a) {
+      L.aw[a][i] = L.anchor_w[i][a];
+      L.adw[a][i] = L.anchor_dw[i][a];
+      L.steady[a] += L.weight[i] * L.anchor_w[i][a] + L.moment[i] * L.anchor_dw[i][a];
+    }
+  }
   const bool any_exact = S.plate_model == PlateModel::Exact ||
                          std::find(S.unit_exact.begin(), S.unit_exact.end(), 1) != S.unit_exact.end();
   if (any_exact) {
@@ -85,7 +101,103 @@ double unit_transmission(const MicroscopeSetup& S, const SpectralLevel& L, int u
 
 namespace {
 
+// Two bands at a time in SSE2 registers (GCC/Clang vector extensions: the x86-64 baseline, no
+// target flags needed); selects are masks, so nothing branches.
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+inline v2d load2(const double* p) {
+  v2d v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline v2d splat(double x) { return v2d{x, x}; }
+inline v2d select(v2l mask, v2d a, v2d b) {
+  v2l ai, bi;
+  std::memcpy(&ai, &a, sizeof a);
+  std::memcpy(&bi, &b, sizeof b);
+  const v2l r = (ai & mask) | (bi & ~mask);
+  v2d out;
+  std::memcpy(&out, &r, sizeof out);
+  return out;
+}
+inline v2d vabs(v2d x) { return select(x < splat(0.0), -x, x); }
+
+// sin and cos of two lanes (fast_trig.h's algorithm without branches): nearest quadrant by the
+// 1.5·2⁵² rounding trick (exact for |x| < 2⁵¹ in round-to-nearest), Cody–Waite reduction,
+// Taylor polynomials on |r| ≤ π/4 (truncation < 4e-13), the quadrant k mod 4 selecting and signing
+// them.
+inline void sincos2(v2d x, v2d& s, v2d& c) {
+  const v2d magic = splat(6755399441055744.0);  // 1.5·2⁵²
+  const v2d k = (x * splat(0.63661977236758134308) + magic) - magic;
+  const v2d r = (x - k * splat(1.5707963267341256)) - k * splat(6.077100506506192e-11);
+  const v2d r2 = r * r;
+  const v2d sr =
+      r * (1.0 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+           r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0)))))));
+  const v2d cr =
+      1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
+           r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0)))))));
+  const v2d k4 = (k * 0.25 + magic) - magic;
+  const v2d q0 = k - 4.0 * k4;                          // −2 … 2, ≡ k mod 4
+  const v2d q = select(q0 < splat(0.0), q0 + 4.0, q0);  // 0 … 3
+  const v2l odd = vabs(q - 2.0) == splat(1.0);
+  const v2d ps = select(odd, cr, sr), pc = select(odd, sr, cr);
+  s = select(q >= splat(2.0), -ps, ps);         // sin < 0 in quadrants 2, 3
+  c = select(vabs(q - 1.5) < splat(1.0), -pc, pc);  // cos < 0 in quadrants 1, 2
+}
+
+// The common case (no compensator, bands): T(λ) = C0(λ) + Cφ(λ)·cos φ(λ) band-averaged (see
+// band_integral.h); the C0 part is linear in the anchors and precomputed per level. The band loop
+// writes two scalars per band; the XYZ sum follows.
+glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* va, double* vb) {
+  const double two_pi = 6.283185307179586;
+  const v2d half_h = splat(0.5 * L.band_nm);
+  const v2d g0 = splat(m.gamma_nm[0]), g1 = splat(m.gamma_nm[1]), g2 = splat(m.gamma_nm[2]);
+  const v2d k0 = splat(m.c[1][0]), k1 = splat(m.c[1][1]), k2 = splat(m.c[1][2]);
+  const int n = L.n;
+  for (int i = 0; i < n; i += 2) {  // the level's arrays are padded to an even length
+    const v2d w0 = load2(&L.aw[0][i]), w1 = load2(&L.aw[1][i]), w2 = load2(&L.aw[2][i]);
+    const v2d il = load2(&L.inv_nm[i]);
+    const v2d g = w0 * g0 + w1 * g1 + w2 * g2;
+    const v2d dg = load2(&L.adw[0][i]) * g0 + load2(&L.adw[1][i]) * g1 + load2(&L.adw[2][i]) * g2;
+    const v2d phi = two_pi * g * il;                    // φ = 2πΓ/λ
+    const v2d dphi = two_pi * il * (dg - g * il);       // dφ/dλ
+    const v2d c1 = w0 * k0 + w1 * k1 + w2 * k2;
+    const v2d x = dphi * half_h;
+    v2d s0, c0, sx, cx;
+    sincos2(phi, s0, c0);
+    sincos2(x, sx, cx);
+    const v2d x2 = x * x;
+    const v2l small = vabs(x) < splat(1e-3);  // series there: sinc = 1 − x²/6, q = x/3 − x³/30
+    const v2d inv = 1.0 / select(small, splat(1.0), x);
+    const v2d sinc = select(small, 1.0 - x2 * (1.0 / 6.0), sx * inv);
+    const v2d q = select(small, x * (1.0 / 3.0 - x2 * (1.0 / 30.0)), (sx - x * cx) * inv * inv);
+    const v2d a = c1 * c0 * sinc, b = c1 * s0 * q;
+    std::memcpy(va + i, &a, sizeof a);
+    std::memcpy(vb + i, &b, sizeof b);
+  }
+  glm::dvec3 xyz = L.steady[0] * m.c[0][0] + L.steady[1] * m.c[0][1] + L.steady[2] * m.c[0][2];
+  for (int i = 0; i < n; ++i) xyz += L.weight[i] * va[i] - L.moment6h[i] * vb[i];
+  return xyz;
+}
+
 glm::dvec3 modal_unit_xyz(const MicroscopeSetup& S, const SpectralLevel& L, int u) {
+  if (!S.compensator.present && !L.monochromatic) {
+    constexpr int kChunk = 256;
+    alignas(16) double va[kChunk + 1], vb[kChunk + 1];
+    if (L.n <= kChunk) {
+      const EvalUnit& unit = S.units[u];
+      const int D = S.dirs_of(unit);
+      glm::dvec3 xyz(0.0);
+      for (int d = 0; d < D; ++d)
+        xyz += modal_plain_xyz(S.terms[static_cast<std::size_t>(u) * S.dirs_per_unit + d], L, va, vb);
+      xyz /= D;
+      for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(xyz[k])) xyz[k] = 0.0;
+      return xyz;
+    }
+  }
   const EvalUnit& unit = S.units[u];
   const int D = S.dirs_of(unit);
   const bool comp = S.compensator.present;

@@ -24,6 +24,12 @@ struct SpectralLevel {
   std::vector<std::array<double, 3>> anchor_w, anchor_dw;  // modal anchor weights at λc (and d/dλ)
   std::vector<TrainState> train;
   std::vector<std::vector<PreparedPlate>> prepared;  // [band][domain], exact plate model only
+  // The modal kernel's per-band constants, laid out for vector loops over the bands: 1/λc, the
+  // anchor weights and their slopes, and M·6/h; `steady[a]` = Σ_bands W·w_a + M·dw_a, the whole
+  // non-oscillating term C0 of every band in one product per anchor.
+  std::vector<double> inv_nm, aw[3], adw[3];
+  std::vector<glm::dvec3> moment6h;
+  glm::dvec3 steady[3]{};
 };
 
 SpectralLevel make_spectral_level(const MicroscopeSetup& setup, int n);
