@@ -65,7 +65,7 @@ LensPolarizationTable trace_table(bool schlick) {
 }  // namespace
 
 glm::dmat2 LensPolarizationTable::jones(const glm::dvec3& k) const {
-  const double s = std::hypot(k.x, k.y);
+  const double s = std::sqrt(k.x * k.x + k.y * k.y);  // |k| = 1: no overflow to guard against
   const double u = std::min(s / max_sin, 1.0) * (kSamples - 1);
   const int i = std::min(static_cast<int>(u), kSamples - 2);
   const double f = u - i;
@@ -84,7 +84,7 @@ glm::dmat2 LensPolarizationTable::jones(const glm::dvec3& k) const {
 }
 
 glm::dmat2 aplanatic_frame(const glm::dvec3& k) {
-  const double s = std::hypot(k.x, k.y);
+  const double s = std::sqrt(k.x * k.x + k.y * k.y);  // |k| = 1: no overflow to guard against
   if (s < 1e-12) return glm::dmat2(1.0);
   const double cphi = k.x / s, sphi = k.y / s, cth = k.z;
   const glm::dvec3 p3{cth * cphi, cth * sphi, -s}, s3{-sphi, cphi, 0.0};

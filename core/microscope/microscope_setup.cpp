@@ -298,9 +298,10 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
       S->units.push_back(u);
     }
   }
+  const StageToSample to_sample(scene.stage_deg);
   // Refs of a field point seen in parallel (or cone) light.
   auto add_field_point = [&](RefBuilder& rb, const glm::dvec2& f, float w) {
-    const glm::dvec2 p = sample_from_field(f, scene.stage_deg);
+    const glm::dvec2 p = to_sample(f);
     if (is_wedge) {
       const double pos = wedge_thickness_um(scene, p) / scene.sample.thickness_um * (wedge_steps - 1);
       const int i0 = std::min(static_cast<int>(pos), wedge_steps - 2);
@@ -318,19 +319,29 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     const glm::dvec2 centre = sample_from_field({0.0, 0.0}, scene.stage_deg);
     const int dom = domain_at_sample(centre);
     const double d = is_wedge ? wedge_thickness_um(scene, centre) : S->domains[dom].thickness_um;
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * W + x;
-        S->pixel_offset[i] = static_cast<int>(S->refs.size());
-        glm::dvec3 k;
-        if (!bfp_direction(scene, field_from_pixel(W, H, x + 0.5, y + 0.5), k)) continue;
-        EvalUnit u;
-        u.domain = dom;
-        u.thickness_um = d;
-        u.k_air = k;
-        S->units.push_back(u);
-        S->refs.push_back({static_cast<int>(S->units.size()) - 1, 1.0f});
-      }
+    // Directions per pixel in parallel (rows), then numbered in order.
+    std::vector<glm::dvec3> k_px(static_cast<std::size_t>(W) * H);
+    std::vector<char> lit_px(k_px.size());
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 16), [&](const tbb::blocked_range<int>& r) {
+      for (int y = r.begin(); y != r.end(); ++y)
+        for (int x = 0; x < W; ++x) {
+          const std::size_t i = static_cast<std::size_t>(y) * W + x;
+          lit_px[i] = bfp_direction(scene, field_from_pixel(W, H, x + 0.5, y + 0.5), k_px[i]);
+        }
+    });
+    const std::size_t n_lit = static_cast<std::size_t>(std::count(lit_px.begin(), lit_px.end(), 1));
+    S->units.reserve(S->units.size() + n_lit);
+    S->refs.reserve(n_lit);
+    for (std::size_t i = 0; i < k_px.size(); ++i) {
+      S->pixel_offset[i] = static_cast<int>(S->refs.size());
+      if (!lit_px[i]) continue;
+      EvalUnit u;
+      u.domain = dom;
+      u.thickness_um = d;
+      u.k_air = k_px[i];
+      S->units.push_back(u);
+      S->refs.push_back({static_cast<int>(S->units.size()) - 1, 1.0f});
+    }
     S->spatial_samples = 1;
     report << "view: conoscopic figure, one evaluation per pixel (" << S->units.size() << ")";
   } else if (!cono && scene.bertrand_in) {
@@ -368,7 +379,7 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
         for (int y = r.begin(); y != r.end(); ++y)
           for (int x = 0; x < W; ++x)
             centre_domain[static_cast<std::size_t>(y) * W + x] = domain_at_sample(
-                sample_from_field(field_from_pixel(W, H, x + 0.5, y + 0.5), scene.stage_deg));
+                to_sample(field_from_pixel(W, H, x + 0.5, y + 0.5)));
       });
     }
     auto interior = [&](int x, int y) {

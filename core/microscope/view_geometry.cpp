@@ -11,14 +11,16 @@ glm::dvec2 field_from_pixel(int width, int height, double px, double py) {
   return {(px - 0.5 * width) / half, (0.5 * height - py) / half};
 }
 
-glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg) {
+StageToSample::StageToSample(double stage_deg) {
   const double a = -stage_deg * std::numbers::pi / 180.0;
-  const double c = std::cos(a), s = std::sin(a);
-  return {c * f.x - s * f.y, s * f.x + c * f.y};
+  c = std::cos(a);
+  s = std::sin(a);
 }
 
+glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg) { return StageToSample(stage_deg)(f); }
+
 bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air) {
-  const double rho = std::hypot(f.x, f.y);
+  const double rho = std::sqrt(f.x * f.x + f.y * f.y);  // field coordinates are O(1)
   if (rho > 1.0) return false;
   const double sin_t = rho * scene.objective.na;
   if (sin_t > scene.condenser.na) return false;

@@ -13,6 +13,12 @@ namespace pmsim {
 glm::dvec2 field_from_pixel(int width, int height, double px, double py);
 // The same point in the sample frame, i.e. undoing the stage rotation.
 glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg);
+// sample_from_field with the stage angle's cosine and sine computed once (per-pixel loops).
+struct StageToSample {
+  explicit StageToSample(double stage_deg);
+  glm::dvec2 operator()(const glm::dvec2& f) const { return {c * f.x - s * f.y, s * f.x + c * f.y}; }
+  double c, s;
+};
 
 // Conoscopic (Bertrand lens in): the direction in air of the light that reaches back-focal-plane
 // point f: sin θ_air = |f|·objective.na, azimuth of f. False outside the disk or beyond the
