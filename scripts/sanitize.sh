@@ -7,6 +7,8 @@
 #           takes snapshots.
 # usage: scripts/sanitize.sh [asan|tsan|all]   (default all)
 # Build folders: build-asan and build-tsan (override: PMSIM_ASAN_BUILD, PMSIM_TSAN_BUILD).
+# PMSIM_ASAN_CMAKE_ARGS adds configure options to the asan build (CI: -DPMSIM_FUZZ=ON, so that
+# scripts/fuzz.sh can reuse the same objects instead of a third build).
 # Compiler: clang (CC/CXX override). Prints the time each step took.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -21,7 +23,7 @@ now() { date +%s; }
 if [[ "$what" == asan || "$what" == all ]]; then
   t0=$(now)
   cmake -S "$root" -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DPMSIM_SANITIZE=ON -DPMSIM_BUILD_UI=OFF >/dev/null
+        -DPMSIM_SANITIZE=ON -DPMSIM_BUILD_UI=OFF ${PMSIM_ASAN_CMAKE_ARGS:-} >/dev/null
   # -k 0: a target that fails to build does not stop the others; its tests then fail as missing.
   cmake --build "$asan_dir" -j "$jobs" -- -k 0 || { echo "sanitize: some targets failed to build"; status=1; }
   t1=$(now)

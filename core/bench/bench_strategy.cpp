@@ -41,12 +41,19 @@ double uniform01(std::uint64_t& s) { return (splitmix(s) >> 11) * (1.0 / 9007199
 double exact_transmission(const MicroscopeSetup& S, const EvalUnit& unit, double nm) {
   const TrainState train = make_train(S.scene, S.compensator, nm);
   const OpticalDomain& dom = S.domains[unit.domain];
-  if (!dom.crystal || unit.thickness_um <= 0.0) return jones_transmission(train, JonesMatrix::identity());
-  PreparedPlate p = S.prepare(unit.domain, nm);
-  p.thickness_um = unit.thickness_um;
   const int D = S.dirs_of(unit);
   double t = 0.0;
-  for (int d = 0; d < D; ++d) t += jones_transmission(train, plate_jones(p, S.dir(unit, d)));
+  // Condenser and objective as the renderer has them (aplanatic frame; physical s/p if chosen).
+  if (!dom.crystal || unit.thickness_um <= 0.0) {
+    for (int d = 0; d < D; ++d) t += jones_transmission(train, S.with_lenses(JonesMatrix::identity(), S.dir(unit, d)));
+    return t / D;
+  }
+  PreparedPlate p = S.prepare(unit.domain, nm);
+  p.thickness_um = unit.thickness_um;
+  for (int d = 0; d < D; ++d) {
+    const glm::dvec3& k = S.dir(unit, d);
+    t += jones_transmission(train, S.with_lenses(plate_jones(p, k), k));
+  }
   t /= D;
   return std::isfinite(t) ? std::max(0.0, t) : 0.0;
 }

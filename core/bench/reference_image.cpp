@@ -103,7 +103,7 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
   const OpticalDomain& dom = S.domains[unit.domain];
   if (!dom.crystal || unit.thickness_um <= 0.0) {
     for (int b = 0; b < N; ++b) {
-      const double t = jones_transmission(L.train[b], JonesMatrix::identity());
+      const double t = jones_transmission(L.train[b], S.with_lenses(JonesMatrix::identity(), k));
       acc.full += L.weight[b] * t;
       if (b % 2 == 0) acc.half += (L.weight[b] + L.weight[std::min(b + 1, N - 1)]) * t;
     }
@@ -127,23 +127,32 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
       modes[b] = plate_modes(p, k);
     }
   }
+  glm::dmat2 lens_c, lens_o;
+  S.lens_jones(k, lens_c, lens_o);
+  const glm::dmat2 lens_oc = lens_o * lens_c;
   for (int b = 0; b < N; ++b) {
     double t, t_half = 0.0;
     if (sample_jones) {
       PreparedPlate p = L.prepared[b][unit.domain];
       p.thickness_um = unit.thickness_um;
-      t = jones_transmission(L.train[b], plate_jones(p, k));
+      t = jones_transmission(L.train[b], S.with_lenses(plate_jones(p, k), k));
       t_half = t;
     } else {
+      // Lenses (condenser C, objective O; the aplanatic frame for ideal ones): the modes leave
+      // as O·e_m, and since the duals of O·e_m are O⁻ᵀ·d̃_m, the polarizer becomes O·C·p.
       ModalPoint m;
       modes_in_basis(modes[b], k, m.e1, m.e2);
+      m.e1 = lens_o * m.e1;
+      m.e2 = lens_o * m.e2;
       m.t1 = modes[b].t1;
       m.t2 = modes[b].t2;
       m.gamma_nm = modes[b].retardation_nm;
       const int lo = std::max(0, b - 1), hi = std::min(N - 1, b + 1);
       m.dgamma_dnm = (modes[hi].retardation_nm - modes[lo].retardation_nm) / (L.nm[hi] - L.nm[lo]);
-      t = modal_transmission(L.train[b], m, L.band_nm);
-      if (b % 2 == 0) t_half = modal_transmission(L.train[b], m, 2.0 * L.band_nm);
+      TrainState train = L.train[b];
+      train.polarizer = lens_oc * train.polarizer;
+      t = modal_transmission(train, m, L.band_nm);
+      if (b % 2 == 0) t_half = modal_transmission(train, m, 2.0 * L.band_nm);
     }
     if (!std::isfinite(t)) t = 0.0;
     if (!std::isfinite(t_half)) t_half = 0.0;

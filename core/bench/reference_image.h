@@ -29,7 +29,7 @@ struct ReferenceImage {
 
 constexpr int kReferenceBands = 400;
 // Bumped whenever the reference computation changes, so that stale cache files are ignored.
-constexpr const char* kReferenceVersion = "pmsim-bench-reference-7";
+constexpr const char* kReferenceVersion = "pmsim-bench-reference-8";
 
 // The scene the reference renders (strategy exact, spp raised for sections); its JSON is part of
 // the cache key.
