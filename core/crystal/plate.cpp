@@ -259,19 +259,19 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
   if (!P.fresnel) {
     // Lossless: the mode D directions P = [[dp0, dp1], [ds0, ds1]] (columns, in (p, s)) are skew
     // at oblique incidence, and P⁻¹ … P would not be unitary (gains up to 9 % for calcite at
-    // θ = 84°). Use the nearest orthogonal basis instead, Q = P·(PᵀP)^(−1/2) (Löwdin symmetric
-    // orthogonalisation), so that tin = Qᵀ, tout = Q and |J|² ≤ 1 exactly.
-    const double a = f.dp[0] * f.dp[0] + f.ds[0] * f.ds[0];
-    const double b = f.dp[0] * f.dp[1] + f.ds[0] * f.ds[1];
-    const double c = f.dp[1] * f.dp[1] + f.ds[1] * f.ds[1];
-    // √M = (M + √det·I)/√(tr M + 2√det) for a 2×2 SPD matrix M; then invert it.
-    const double sdet = std::sqrt(std::max(a * c - b * b, 0.0));
-    const double tr = std::sqrt(std::max(a + c + 2.0 * sdet, 1e-300));
-    const double ra = (a + sdet) / tr, rb = b / tr, rc = (c + sdet) / tr;  // √M
-    const double rdet = std::max(ra * rc - rb * rb, 1e-300);
-    const double ia = rc / rdet, ib = -rb / rdet, ic = ra / rdet;          // M^(−1/2)
-    const double q00 = f.dp[0] * ia + f.dp[1] * ib, q01 = f.dp[0] * ib + f.dp[1] * ic;
-    const double q10 = f.ds[0] * ia + f.ds[1] * ib, q11 = f.ds[0] * ib + f.ds[1] * ic;
+    // θ = 84°). Use the orthogonal matrix nearest to P (its polar factor) instead, so that
+    // tin = Qᵀ, tout = Q and |J|² ≤ 1 to rounding. For 2×2 the polar factor is closed-form and
+    // stable even for nearly parallel modes: a rotation by atan2(P10 − P01, P00 + P11) when
+    // det P > 0, a reflection at atan2(P10 + P01, P00 − P11) otherwise.
+    const double det = f.dp[0] * f.ds[1] - f.dp[1] * f.ds[0];
+    double q00, q01, q10, q11;
+    if (det >= 0.0) {
+      const double t = std::atan2(f.ds[0] - f.dp[1], f.dp[0] + f.ds[1]);
+      q00 = std::cos(t), q01 = -std::sin(t), q10 = std::sin(t), q11 = std::cos(t);
+    } else {
+      const double t = std::atan2(f.ds[0] + f.dp[1], f.dp[0] - f.ds[1]);
+      q00 = std::cos(t), q01 = std::sin(t), q10 = std::sin(t), q11 = -std::cos(t);
+    }
     out.tout[0][0] = q00;
     out.tout[0][1] = q01;
     out.tout[1][0] = q10;
