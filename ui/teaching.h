@@ -8,6 +8,7 @@
 
 #include "core/microscope/figure_info.h"
 #include "core/microscope/pixel_probe.h"
+#include "core/render/michel_levy_chart.h"
 #include "core/spectrum/illuminant.h"
 #include "ui/app.h"
 
@@ -30,14 +31,21 @@ struct App::Teaching {
   std::string figure_error;
   std::uint64_t figure_generation = ~0ull;
 
-  // The Michel-Lévy chart: one row of colours per illuminant, computed off the UI thread.
+  // The Michel-Lévy chart with its birefringence lines (Γ = d·Δn), computed off the UI thread at
+  // the pixel size it is drawn at (1 px lines stay sharp), again when the illuminant or size changes.
   static constexpr double kChartMaxNm = 1800.0;
-  static constexpr int kChartColumns = 720;
+  static constexpr double kChartMaxUm = 50.0;
+  struct ChartKey {
+    Illuminant illuminant = Illuminant::D65;
+    int width = 0, height = 0;
+    bool operator==(const ChartKey&) const = default;
+  };
   LinearTexture chart;
-  Illuminant chart_illuminant = Illuminant::D65;
+  ChartKey chart_key;
   bool chart_valid = false;
   std::future<std::vector<float>> chart_job;
-  Illuminant chart_job_illuminant = Illuminant::D65;
+  ChartKey chart_job_key;
+  std::vector<MichelLevyLine> chart_lines = michel_levy_lines(kChartMaxNm, kChartMaxUm);
 };
 
 }  // namespace pmsim::ui

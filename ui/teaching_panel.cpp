@@ -14,26 +14,36 @@ namespace pmsim::ui {
 
 void App::draw_chart() {
   Teaching& t = *teaching_;
-  // (Re)compute the chart's colours off the UI thread when the illuminant changes.
-  if (!t.chart_job.valid() && (!t.chart_valid || t.chart_illuminant != scene_.illuminant)) {
-    t.chart_job_illuminant = scene_.illuminant;
-    t.chart_job = std::async(std::launch::async, [il = scene_.illuminant] {
-      return michel_levy_chart(Teaching::kChartColumns, 1, Teaching::kChartMaxNm, il);
+  const Layout& l = layout_;
+  // Rows of the chart panel: title and probe read-out, Δn labels, the chart, order labels; a
+  // margin left for the thickness axis and right for the labels of lines leaving on that side.
+  const float row = ImGui::GetTextLineHeight() + 2;
+  const float small = ImGui::GetFontSize() * 0.85f;
+  const float left = ImGui::CalcTextSize("50 um").x + 6, right = ImGui::CalcTextSize("0.000").x + 6;
+  const ImVec2 p0(l.chart.x + left, l.chart.y + 2 * row);
+  const ImVec2 p1(l.chart.x + l.chart.w - right, l.chart.y + l.chart.h - row);
+  const Teaching::ChartKey want{scene_.illuminant, std::max(1, static_cast<int>(p1.x - p0.x)),
+                                std::max(1, static_cast<int>(p1.y - p0.y))};
+
+  // (Re)compute the chart at its drawn size off the UI thread (illuminant or window changed).
+  if (!t.chart_job.valid() && (!t.chart_valid || !(t.chart_key == want))) {
+    t.chart_job_key = want;
+    t.chart_job = std::async(std::launch::async, [k = want] {
+      return michel_levy_chart_with_lines(k.width, k.height, Teaching::kChartMaxNm,
+                                          Teaching::kChartMaxUm, k.illuminant);
     });
   }
   if (t.chart_job.valid() &&
       t.chart_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    t.chart_key = t.chart_job_key;
+    t.chart_valid = true;  // also on failure: do not retry every frame; say why instead
     try {
-      t.chart.upload(Teaching::kChartColumns, 1, t.chart_job.get());
-      t.chart_illuminant = t.chart_job_illuminant;
-      t.chart_valid = true;
+      t.chart.upload(t.chart_key.width, t.chart_key.height, t.chart_job.get());
     } catch (const std::exception& e) {
-      t.chart_valid = true;  // do not retry every frame; say why instead
       fail(std::string("Michel-Levy chart: ") + e.what());
     }
   }
 
-  const Layout& l = layout_;
   ImGui::SetNextWindowPos(ImVec2(l.chart.x, l.chart.y));
   ImGui::SetNextWindowSize(ImVec2(l.chart.w, l.chart.h));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
@@ -41,16 +51,51 @@ void App::draw_chart() {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  const float label_h = ImGui::GetTextLineHeight() + 2;
-  const ImVec2 p0(l.chart.x, l.chart.y + label_h);
-  const ImVec2 p1(l.chart.x + l.chart.w, l.chart.y + l.chart.h - label_h);
+  ImFont* font = ImGui::GetFont();
+  const ImU32 text = IM_COL32(200, 200, 200, 255);
   const auto x_of = [&](double nm) {
     return static_cast<float>(p0.x + (p1.x - p0.x) * nm / Teaching::kChartMaxNm);
   };
+  const auto y_of = [&](double um) {
+    return static_cast<float>(p1.y - (p1.y - p0.y) * um / Teaching::kChartMaxUm);
+  };
   ImGui::SetCursorScreenPos(ImVec2(l.chart.x, l.chart.y));
-  ImGui::Text("Michel-Levy chart (%s), retardation 0-%.0f nm", illuminant_name(scene_.illuminant).data(),
-              Teaching::kChartMaxNm);
-  if (t.chart.valid()) draw->AddImage(t.chart.imgui_id(), p0, p1);
+  char title[64];
+  std::snprintf(title, sizeof title, "Michel-Levy chart (%s), lines of dn",
+                illuminant_name(scene_.illuminant).data());
+  ImGui::TextUnformatted(title);
+  const float title_w = ImGui::CalcTextSize(title).x;
+  if (t.chart.valid()) {
+    // The texture was made for a size; while a new one is computed, stretch the old one.
+    draw->AddImage(t.chart.imgui_id(), p0, p1);
+  }
+  // Thickness axis.
+  for (double um : {0.0, 25.0, 50.0}) {
+    char label[16];
+    std::snprintf(label, sizeof label, um > 0 ? "%.0f um" : "0", um);
+    const float w = ImGui::CalcTextSize(label).x;
+    const float y = std::clamp(y_of(um) - row / 2, p0.y - 2, p1.y - row + 2);
+    draw->AddText(ImVec2(p0.x - w - 4, y), text, label);
+  }
+  // Birefringence labels where each line leaves the chart, skipping those that would overlap.
+  float next_top_x = p0.x, next_right_y = p0.y - row;
+  for (const MichelLevyLine& line : t.chart_lines) {
+    const float x = p0.x + (p1.x - p0.x) * static_cast<float>(line.to_frac.x);
+    const float y = p0.y + (p1.y - p0.y) * static_cast<float>(line.to_frac.y);
+    const ImVec2 size = font->CalcTextSizeA(small, 1e9f, 0, line.label.c_str());
+    if (line.ends_on_top) {
+      const float lx = x - size.x / 2;
+      if (lx < next_top_x || lx + size.x > p1.x + right) continue;
+      draw->AddText(font, small, ImVec2(lx, p0.y - size.y), text, line.label.c_str());
+      next_top_x = lx + size.x + 4;
+    } else {
+      const float ly = y - size.y / 2;
+      // Lines leaving on the right come down the edge as Δn grows.
+      if (ly < next_right_y || ly + size.y > p1.y + row) continue;
+      draw->AddText(font, small, ImVec2(p1.x + 3, ly), text, line.label.c_str());
+      next_right_y = ly + size.y;
+    }
+  }
   // Order boundaries every 551 nm (the first-order red of the chart).
   for (int order = 1; order * 551.0 < Teaching::kChartMaxNm; ++order) {
     const float x = x_of(order * 551.0);
@@ -59,22 +104,43 @@ void App::draw_chart() {
   for (int order = 1; (order - 1) * 551.0 < Teaching::kChartMaxNm; ++order) {
     char label[16];
     std::snprintf(label, sizeof label, "order %d", order);
-    draw->AddText(ImVec2(x_of((order - 1) * 551.0) + 4, p1.y + 1), IM_COL32(200, 200, 200, 255),
-                  label);
+    draw->AddText(ImVec2(x_of((order - 1) * 551.0) + 4, p1.y + 1), text, label);
   }
-  // The retardation at the probe, marked on the chart.
+  // The plate at the probe: its retardation (vertical) and thickness (horizontal) meet on its
+  // birefringence line.
   const PixelProbe& p = t.probe;
   if (p.lit && t.probe_error.empty()) {
-    const double g = std::clamp(p.retardation_nm, 0.0, Teaching::kChartMaxNm);
-    const float x = x_of(g);
-    draw->AddTriangleFilled(ImVec2(x - 6, p0.y - 1), ImVec2(x + 6, p0.y - 1), ImVec2(x, p0.y + 9),
-                            IM_COL32(255, 255, 255, 255));
-    draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), IM_COL32(0, 0, 0, 255), 2.0f);
-    char label[64];
-    std::snprintf(label, sizeof label, "at the probe: %.0f nm, order %.2f%s", p.retardation_nm,
-                  p.order, p.retardation_nm > Teaching::kChartMaxNm ? " (off the chart)" : "");
+    const ImU32 mark = IM_COL32(255, 255, 255, 255), shadow = IM_COL32(0, 0, 0, 255);
+    const bool x_on = p.retardation_nm <= Teaching::kChartMaxNm;
+    const bool y_on = p.thickness_um > 0 && p.thickness_um <= Teaching::kChartMaxUm;
+    const float x = x_of(std::clamp(p.retardation_nm, 0.0, Teaching::kChartMaxNm));
+    if (x_on) {
+      draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), shadow, 3.0f);
+      draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), mark, 1.0f);
+    }
+    if (y_on) {
+      const float y = y_of(p.thickness_um);
+      draw->AddLine(ImVec2(p0.x, y), ImVec2(p1.x, y), shadow, 3.0f);
+      draw->AddLine(ImVec2(p0.x, y), ImVec2(p1.x, y), mark, 1.0f);
+      if (x_on) {
+        draw->AddCircleFilled(ImVec2(x, y), 4, mark, 12);
+        draw->AddCircle(ImVec2(x, y), 4, shadow, 12, 1.5f);
+      }
+    }
+    const char* off = x_on && (y_on || p.thickness_um <= 0) ? "" : " (off the chart)";
+    char label[128];
+    if (p.thickness_um > 0)
+      std::snprintf(label, sizeof label, "probe: %.0f nm, order %.2f, %.1f um, dn %.4f%s",
+                    p.retardation_nm, p.order, p.thickness_um,
+                    p.retardation_nm / (1000.0 * p.thickness_um), off);
+    else
+      std::snprintf(label, sizeof label, "probe: %.0f nm, order %.2f%s", p.retardation_nm, p.order,
+                    off);
+    if (title_w + ImGui::CalcTextSize(label).x + 12 > l.chart.w)  // narrow window: the essentials
+      std::snprintf(label, sizeof label, "%.0f nm, order %.2f%s", p.retardation_nm, p.order, off);
     const float w = ImGui::CalcTextSize(label).x;
-    draw->AddText(ImVec2(p1.x - w, l.chart.y), IM_COL32(255, 255, 255, 255), label);
+    draw->AddText(ImVec2(l.chart.x + l.chart.w - w, l.chart.y), IM_COL32(255, 255, 255, 255),
+                  label);
   }
   ImGui::End();
   ImGui::PopStyleVar();
