@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/scene_file.h"
+#include "ui/asset_lists.h"
 #include "ui/headless_driver.h"
 #include "ui/script.h"
 #include "ui/window_driver.h"
@@ -19,6 +21,8 @@ namespace {
 constexpr const char* kUsage = R"(pmsim - interactive polarizing microscope
 
 usage: pmsim [SCENE.json] [options]
+  Without SCENE, starts on the granite thin section between crossed polars
+  (assets/scenes/quartz_section_ortho.json, the default scene of pmsim-render).
   --headless            draw the window off-screen (EGL surfaceless, else OSMesa), no display needed
   --set key=value       change a scene key (repeatable; keys as in pmsim-render)
   --frames N            run N frames (windowed: then quit; headless: before settling, default 3)
@@ -108,14 +112,22 @@ int pmsim_main(int argc, char** argv) {
   // All input is checked before any window opens: bad input is exit 2 with nothing written.
   Scene scene;
   std::vector<ScriptCommand> script;
+  // The built-in Scene{} is a plate at extinction (a black field); a first look should show
+  // something: the thin section pmsim-render renders by default.
+  std::string scene_file = o.scene_file;
+  if (scene_file.empty()) {
+    const std::string fallback = asset_dir() + "/scenes/quartz_section_ortho.json";
+    std::error_code ec;
+    if (std::filesystem::exists(fallback, ec)) scene_file = fallback;
+  }
   try {
-    if (!o.scene_file.empty()) {
+    if (!scene_file.empty()) {
       std::vector<std::string> warnings;
-      scene = load_scene_file(o.scene_file, &warnings);
+      scene = load_scene_file(scene_file, &warnings);
       for (const auto& w : warnings) std::cerr << "pmsim: warning: " << w << "\n";
     }
     for (const auto& s : o.sets) apply_setting(scene, s);
-    validate_scene(scene, o.scene_file);
+    validate_scene(scene, scene_file);
     if (!o.script.empty()) script = load_script(o.script);
   } catch (const InputError& e) {
     std::cerr << "pmsim: " << e.what() << "\n";
