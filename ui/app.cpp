@@ -1,5 +1,6 @@
 #include "ui/app.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -99,6 +100,7 @@ bool App::commit(const Scene& candidate) {
   scene_ = candidate;
   ++generation_;
   feed_->submit(scene_, generation_);
+  change_frame_ = counters_.frames;
   ++counters_.commits;
   error_.clear();
   return true;
@@ -228,8 +230,18 @@ void App::frame() {
     edit.stage_deg = wrap_deg(edit.stage_deg);
     commit(edit);
   }
+  // Again after the changes: the texture is drawn when ImGui renders, after this, so a first
+  // image that arrived while the frame was built is on screen in this frame, not the next.
+  pull_snapshot();
 
   ++counters_.frames;
+  if (change_frame_ && image_current_) {
+    const std::uint64_t frames = counters_.frames - *change_frame_;
+    ++counters_.first_images;
+    counters_.first_image_frames += frames;
+    counters_.first_image_frames_max = std::max(counters_.first_image_frames_max, frames);
+    change_frame_.reset();
+  }
   counters_.frame_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

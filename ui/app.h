@@ -27,6 +27,12 @@ struct AppCounters {
   std::uint64_t commits = 0;          // accepted scene changes
   std::uint64_t rejected = 0;         // scene changes refused (error banner)
   std::uint64_t failures = 0;         // errors shown in the banner (bad input, failed writes)
+  // Frames from an accepted change to the first frame showing an image of it (that frame
+  // included: 1 = the change's own frame): summed over changes whose image was shown before the
+  // next change, and the largest seen.
+  std::uint64_t first_images = 0;
+  std::uint64_t first_image_frames = 0;
+  std::uint64_t first_image_frames_max = 0;
   double frame_ms = 0.0;              // CPU time of the last frame() call
   double fps = 0.0;                   // UI frames per second, smoothed (driver-measured)
 };
@@ -93,6 +99,7 @@ class App {
   std::unique_ptr<RenderFeed> feed_;
   RenderImage image_;
   bool image_current_ = false;      // image_ belongs to scene_
+  std::optional<std::uint64_t> change_frame_;  // counters_.frames at the last change not yet shown
   LinearTexture field_texture_;
   Layout layout_;
   int window_w_ = 1280, window_h_ = 800;
