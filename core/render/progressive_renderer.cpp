@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/crystal/crystal.h"
 #include "core/microscope/microscope_setup.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/view_geometry.h"
@@ -74,6 +75,21 @@ constexpr int kPreviewFactor = 4;
 constexpr int kPreviewBands = 16;
 constexpr long long kPreviewMinPixels = 256LL * 256LL;
 
+// A biaxial figure costs ~10x more per direction (the mode search), and its isochromes are far
+// apart in a thin plate: its preview grid is 8x coarser each way.
+constexpr int kPreviewFactorBiaxial = 8;
+
+int preview_factor(const Scene& scene) {
+  if (!scene.sample_in || scene.sample.type != SampleType::Plate) return kPreviewFactor;
+  try {
+    const CrystalSymmetry sym = scene.sample.crystal ? crystal_from_indices(*scene.sample.crystal).symmetry()
+                                                     : find_mineral(scene.sample.mineral).symmetry();
+    return sym == CrystalSymmetry::Biaxial ? kPreviewFactorBiaxial : kPreviewFactor;
+  } catch (const std::exception&) {
+    return kPreviewFactor;  // build_setup reports the error
+  }
+}
+
 bool wants_preview(const Scene& scene) {
   return scene.mode == ViewMode::Cono && scene.bertrand_in &&
          static_cast<long long>(scene.render.width) * scene.render.height >= kPreviewMinPixels;
@@ -85,8 +101,9 @@ bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::tim
                  std::uint64_t generation, Publish&& publish) {
   Scene c = scene;
   const int W = scene.render.width, H = scene.render.height;
-  c.render.width = std::max(1, (W + kPreviewFactor - 1) / kPreviewFactor);
-  c.render.height = std::max(1, (H + kPreviewFactor - 1) / kPreviewFactor);
+  const int factor = preview_factor(scene);
+  c.render.width = std::max(1, (W + factor - 1) / factor);
+  c.render.height = std::max(1, (H + factor - 1) / factor);
   const int cw = c.render.width, ch = c.render.height;
   auto setup = build_setup(c, &cancel);
   if (!setup || cancel) return false;
@@ -159,8 +176,8 @@ bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::tim
   img.wavelengths = level.n;
   img.passes = 1;
   img.generation = generation;
-  img.samples_per_pixel = static_cast<double>(level.n) / (kPreviewFactor * kPreviewFactor);
-  img.model_report = "preview: 1/" + std::to_string(kPreviewFactor) + " resolution, " + std::to_string(level.n) +
+  img.samples_per_pixel = static_cast<double>(level.n) / (factor * factor);
+  img.model_report = "preview: 1/" + std::to_string(factor) + " resolution, " + std::to_string(level.n) +
                      " bands; " + S.model_report;
   img.converged = false;
   img.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
