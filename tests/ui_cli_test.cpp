@@ -20,9 +20,16 @@ const std::string kSmall = " --set render.width=48 --set render.height=48";
 // One folder per test: ctest runs the tests of this file as parallel processes.
 std::string kOut;
 
+// The shell exits 2 itself when it cannot open the log (e.g. its folder removed under it), which
+// would pass for pmsim's own exit 2: the log must exist and be new, or the run does not count.
 int run(const std::string& args, std::string* output = nullptr) {
   const std::string log = kOut + "/log.txt";
+  std::filesystem::remove(log);
   const int status = std::system((kPmsim + " " + args + " > " + log + " 2>&1").c_str());
+  if (!std::filesystem::exists(log)) {
+    ADD_FAILURE() << "the shell could not write " << log << " (pmsim did not run)";
+    return -1;
+  }
   if (output) {
     std::ifstream f(log);
     output->assign(std::istreambuf_iterator<char>(f), {});
