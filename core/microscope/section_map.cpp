@@ -14,20 +14,82 @@
 
 namespace pmsim {
 
-int SectionMap::domain_at(const glm::dvec2& p) const {
+namespace {
+// Squared distance of p from grain g's seed in its anisotropic metric, over its weight².
+inline double grain_distance(const SectionGrain& g, const glm::dvec2& p) {
+  const glm::dvec2 d = p - g.seed;
+  const double c = g.cos_elong, s = g.sin_elong;
+  const double along = (d.x * c + d.y * s) / g.elongation, across = -d.x * s + d.y * c;
+  return (along * along + across * across) / (g.weight * g.weight);
+}
+}  // namespace
+
+void SectionMap::build_index() {
+  const int N = kIndexCells;
+  const double cell = 2.0 * kIndexHalf / N;
+  cell_start_.assign(1, 0);
+  cell_grains_.clear();
+  std::vector<double> lower(grains.size());
+  for (int cy = 0; cy < N; ++cy)
+    for (int cx = 0; cx < N; ++cx) {
+      const glm::dvec2 lo{-kIndexHalf + cx * cell, -kIndexHalf + cy * cell}, hi = lo + glm::dvec2(cell);
+      // dist is a convex quadratic: its maximum over the cell is at a corner; its minimum is at
+      // least min(1, 1/e²)·|p − seed|²/w² ≥ that factor times the cell's squared distance.
+      double upper = 1e300;
+      for (std::size_t i = 0; i < grains.size(); ++i) {
+        const SectionGrain& g = grains[i];
+        double u = 0.0;
+        for (const glm::dvec2 c : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)})
+          u = std::max(u, grain_distance(g, c));
+        upper = std::min(upper, u * (1.0 + 1e-9));
+        const double dx = std::max({lo.x - g.seed.x, 0.0, g.seed.x - hi.x});
+        const double dy = std::max({lo.y - g.seed.y, 0.0, g.seed.y - hi.y});
+        const double e = g.elongation;
+        lower[i] = (dx * dx + dy * dy) * std::min(1.0, 1.0 / (e * e)) / (g.weight * g.weight) * (1.0 - 1e-9);
+      }
+      for (std::size_t i = 0; i < grains.size(); ++i)
+        if (lower[i] <= upper) cell_grains_.push_back(static_cast<int>(i));
+      cell_start_.push_back(static_cast<int>(cell_grains_.size()));
+    }
+  indexed_grains_ = grains.size();
+}
+
+int SectionMap::nearest_grain(const glm::dvec2& p) const {
+  const int* first = nullptr;
+  const int* last = nullptr;
+  if (indexed_grains_ == grains.size() && !cell_start_.empty()) {
+    const double fx = (p.x + kIndexHalf) / (2.0 * kIndexHalf) * kIndexCells;
+    const double fy = (p.y + kIndexHalf) / (2.0 * kIndexHalf) * kIndexCells;
+    if (fx >= 0 && fy >= 0 && fx < kIndexCells && fy < kIndexCells) {
+      const int c = static_cast<int>(fy) * kIndexCells + static_cast<int>(fx);
+      first = cell_grains_.data() + cell_start_[c];
+      last = cell_grains_.data() + cell_start_[c + 1];
+    }
+  }
   int best = 0;
   double best_d = 1e300;
+  if (first) {  // candidates in increasing index: the same winner as the full search, ties included
+    for (const int* it = first; it != last; ++it) {
+      const double dist = grain_distance(grains[*it], p);
+      if (dist < best_d) {
+        best_d = dist;
+        best = *it;
+      }
+    }
+    return best;
+  }
   for (std::size_t i = 0; i < grains.size(); ++i) {
-    const SectionGrain& g = grains[i];
-    const glm::dvec2 d = p - g.seed;
-    const double c = g.cos_elong, s = g.sin_elong;
-    const double along = (d.x * c + d.y * s) / g.elongation, across = -d.x * s + d.y * c;
-    const double dist = (along * along + across * across) / (g.weight * g.weight);
+    const double dist = grain_distance(grains[i], p);
     if (dist < best_d) {
       best_d = dist;
       best = static_cast<int>(i);
     }
   }
+  return best;
+}
+
+int SectionMap::domain_at(const glm::dvec2& p) const {
+  const int best = nearest_grain(p);
   const SectionGrain& g = grains[best];
   int lamella = 0;
   if (g.twinned) {
@@ -119,6 +181,7 @@ SectionMap parse_section(const std::string& path) {
     g.twin_normal = {-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
     m.grains.push_back(std::move(g));
   }
+  m.build_index();
   return m;
 }
 

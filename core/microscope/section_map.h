@@ -47,6 +47,17 @@ class SectionMap {
     const SectionGrain& g = grains[d / 2];
     return (d & 1) ? g.twin_orientation : g.orientation;
   }
+  // Builds the lookup grid domain_at uses (load_section calls it; a map whose grains changed
+  // since falls back to testing every grain). Same results as the exhaustive search.
+  void build_index();
+
+ private:
+  int nearest_grain(const glm::dvec2& p) const;
+  // Grid over [−kIndexHalf, kIndexHalf]² with, per cell, the grains that can be nearest there.
+  static constexpr int kIndexCells = 64;
+  static constexpr double kIndexHalf = 2.0;
+  std::vector<int> cell_start_, cell_grains_;
+  std::size_t indexed_grains_ = 0;
 };
 
 // Loads (once, cached by resolved path) a section file; throws InputError naming file, key and
