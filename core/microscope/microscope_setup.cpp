@@ -389,10 +389,20 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
       };
       return same(x - 1, y) && same(x + 1, y) && same(x, y - 1) && same(x, y + 1);
     };
+    // A uniform sample (one unit, no wedge or section): every pixel shows unit 0 with the summed
+    // weight of its sub-samples — filled directly, without per-sample bookkeeping.
+    const bool uniform = !is_wedge && !(scene.sample_in && type == SampleType::Section) && S->units.size() == 1;
+    if (uniform) {
+      float w = 0.0f;
+      for (int k = 0; k < n * n; ++k) w += 1.0f / (n * n);  // as RefBuilder sums them
+      const std::size_t P = static_cast<std::size_t>(W) * H;
+      S->refs.assign(P, PixelRef{0, w});
+      for (std::size_t i = 0; i < P; ++i) S->pixel_offset[i] = static_cast<int>(i);
+    }
     // Rows in parallel, each into its own list, then concatenated in order.
-    std::vector<std::vector<PixelRef>> row_refs(H);
+    std::vector<std::vector<PixelRef>> row_refs(uniform ? 0 : H);
     std::vector<std::vector<int>> row_counts(H);
-    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& r) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, uniform ? 0 : H, 4), [&](const tbb::blocked_range<int>& r) {
       RefBuilder rb;
       for (int y = r.begin(); y != r.end(); ++y) {
         if (cancel && *cancel) return;
@@ -415,7 +425,7 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
       }
     });
     if (cancel && *cancel) return nullptr;
-    for (int y = 0; y < H; ++y) {
+    for (int y = 0; y < (uniform ? 0 : H); ++y) {
       int k = 0;
       for (int x = 0; x < W; ++x) {
         S->pixel_offset[static_cast<std::size_t>(y) * W + x] = static_cast<int>(S->refs.size()) + k;
