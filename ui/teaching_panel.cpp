@@ -60,11 +60,37 @@ void App::draw_chart() {
     return static_cast<float>(p1.y - (p1.y - p0.y) * um / Teaching::kChartMaxUm);
   };
   ImGui::SetCursorScreenPos(ImVec2(l.chart.x, l.chart.y));
-  char title[64];
-  std::snprintf(title, sizeof title, "Michel-Levy chart (%s), lines of dn",
+  // Title left, the probe's read-out right: each shortened in turn until both fit.
+  const PixelProbe& p = t.probe;
+  const bool probed = p.lit && t.probe_error.empty();
+  const bool x_on = p.retardation_nm <= Teaching::kChartMaxNm;
+  const bool y_on = p.thickness_um > 0 && p.thickness_um <= Teaching::kChartMaxUm;
+  const char* off = x_on && (y_on || p.thickness_um <= 0) ? "" : " (off the chart)";
+  char titles[2][64], labels[2][128];
+  std::snprintf(titles[0], sizeof titles[0], "Michel-Levy chart (%s), lines of dn",
                 illuminant_name(scene_.illuminant).data());
+  std::snprintf(titles[1], sizeof titles[1], "Michel-Levy (%s)",
+                illuminant_name(scene_.illuminant).data());
+  if (p.thickness_um > 0)
+    std::snprintf(labels[0], sizeof labels[0], "probe: %.0f nm, order %.2f, %.1f um, dn %.4f%s",
+                  p.retardation_nm, p.order, p.thickness_um,
+                  p.retardation_nm / (1000.0 * p.thickness_um), off);
+  else
+    std::snprintf(labels[0], sizeof labels[0], "probe: %.0f nm, order %.2f%s", p.retardation_nm,
+                  p.order, off);
+  std::snprintf(labels[1], sizeof labels[1], "%.0f nm, order %.2f", p.retardation_nm, p.order);
+  const char* title = "";
+  const char* label = probed ? labels[1] : "";
+  for (const char* l_try : {labels[0], labels[1]}) {
+    const float lw = probed ? ImGui::CalcTextSize(l_try).x + 12 : 0;
+    for (const char* t_try : {titles[0], titles[1]})
+      if (!*title && ImGui::CalcTextSize(t_try).x + lw <= l.chart.w) {
+        title = t_try;
+        if (probed) label = l_try;
+      }
+    if (*title) break;
+  }
   ImGui::TextUnformatted(title);
-  const float title_w = ImGui::CalcTextSize(title).x;
   if (t.chart.valid()) {
     // The texture was made for a size; while a new one is computed, stretch the old one.
     draw->AddImage(t.chart.imgui_id(), p0, p1);
@@ -108,11 +134,8 @@ void App::draw_chart() {
   }
   // The plate at the probe: its retardation (vertical) and thickness (horizontal) meet on its
   // birefringence line.
-  const PixelProbe& p = t.probe;
-  if (p.lit && t.probe_error.empty()) {
+  if (probed) {
     const ImU32 mark = IM_COL32(255, 255, 255, 255), shadow = IM_COL32(0, 0, 0, 255);
-    const bool x_on = p.retardation_nm <= Teaching::kChartMaxNm;
-    const bool y_on = p.thickness_um > 0 && p.thickness_um <= Teaching::kChartMaxUm;
     const float x = x_of(std::clamp(p.retardation_nm, 0.0, Teaching::kChartMaxNm));
     if (x_on) {
       draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), shadow, 3.0f);
@@ -127,17 +150,6 @@ void App::draw_chart() {
         draw->AddCircle(ImVec2(x, y), 4, shadow, 12, 1.5f);
       }
     }
-    const char* off = x_on && (y_on || p.thickness_um <= 0) ? "" : " (off the chart)";
-    char label[128];
-    if (p.thickness_um > 0)
-      std::snprintf(label, sizeof label, "probe: %.0f nm, order %.2f, %.1f um, dn %.4f%s",
-                    p.retardation_nm, p.order, p.thickness_um,
-                    p.retardation_nm / (1000.0 * p.thickness_um), off);
-    else
-      std::snprintf(label, sizeof label, "probe: %.0f nm, order %.2f%s", p.retardation_nm, p.order,
-                    off);
-    if (title_w + ImGui::CalcTextSize(label).x + 12 > l.chart.w)  // narrow window: the essentials
-      std::snprintf(label, sizeof label, "%.0f nm, order %.2f%s", p.retardation_nm, p.order, off);
     const float w = ImGui::CalcTextSize(label).x;
     draw->AddText(ImVec2(l.chart.x + l.chart.w - w, l.chart.y), IM_COL32(255, 255, 255, 255),
                   label);
