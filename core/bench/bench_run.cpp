@@ -377,10 +377,10 @@ std::string frontier_markdown(const BenchReport& rep, const std::string& plot_fi
         << fmt("%.2f", d3->mean_de2000) << ": ghost light from internal reflections is "
         << (d1->mean_de2000 < 1.0 ? "below the visible threshold, so `optics.lens_depth=1` is the right default"
                                   : "visible, so keep dT ≥ 2")
-        << ". The lens model matters more: ideal lenses are ΔE00 " << fmt("%.1f", ideal->mean_de2000)
+        << ". The lens model matters more: ideal (aplanatic) lenses are ΔE00 " << fmt("%.1f", ideal->mean_de2000)
         << " from the SML model at NA 0.85"
-        << (rp ? ", and the renderer's own physical model (s/p diattenuation only, in the ideal lens' polarization "
-                 "frame) ΔE00 " + fmt("%.1f", rp->mean_de2000) + " — see the report on the polarization frame"
+        << (rp ? ", the renderer's own physical model (the SML's s/p transmission profile on the aplanatic "
+                 "frame, direct path) ΔE00 " + fmt("%.1f", rp->mean_de2000)
                : std::string())
         << ".\n";
     if (sch && d3)
