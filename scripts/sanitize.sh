@@ -22,7 +22,7 @@ now() { date +%s; }
 
 if [[ "$what" == asan || "$what" == all ]]; then
   t0=$(now)
-  cmake -S "$root" -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S "$root" -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${PMSIM_SAN_OPT:--O1 -gline-tables-only}" \
         -DPMSIM_SANITIZE=ON -DPMSIM_BUILD_UI=OFF ${PMSIM_ASAN_CMAKE_ARGS:-} >/dev/null
   # -k 0: a target that fails to build does not stop the others; its tests then fail as missing.
   cmake --build "$asan_dir" -j "$jobs" -- -k 0 || { echo "sanitize: some targets failed to build"; status=1; }
@@ -37,7 +37,7 @@ fi
 
 if [[ "$what" == tsan || "$what" == all ]]; then
   t0=$(now)
-  cmake -S "$root" -B "$tsan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S "$root" -B "$tsan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${PMSIM_SAN_OPT:--O1 -gline-tables-only}" \
         -DPMSIM_TSAN=ON -DPMSIM_BUILD_UI=OFF >/dev/null
   cmake --build "$tsan_dir" -j "$jobs" --target reliability_renderer_restart_test
   t1=$(now)
