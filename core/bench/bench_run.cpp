@@ -291,16 +291,21 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
     out.push_back("60 Hz moonshot " + scene + ": best ΔE ≤ 1 is '" + r->strategy + "' at wall " +
                   fmt("%.1f ms", r->time_ms) + idle(*r) +
                   (r->time_ms <= 16 ? " (MET)" : " (" + fmt("%.1f×", r->time_ms / 16.0) + " away)"));
-  // Lens throughput: SML ≥ 30 % of Embree rtcIntersect1 on the 262k sphere.
-  double sml = 0, embree = 0;
-  for (const ThroughputResult& t : rep.throughput) {
+  // Lens throughput: SML ≥ 30 % of Embree rtcIntersect1 "on the same geometry" (issue 5): the lens
+  // itself, as user geometry and triangulated; the issue's 262k-triangle sphere for scale.
+  double sml = 0;
+  for (const ThroughputResult& t : rep.throughput)
     if (t.name.rfind("SML", 0) == 0) sml = t.rays_per_s_per_core;
-    if (t.name == "Embree rtcIntersect1, sphere 262k tris") embree = t.rays_per_s_per_core;
+  for (const char* ref : {"Embree rtcIntersect1, lens as user geometry", "Embree rtcIntersect1, lens triangulated (33k tris)",
+                          "Embree rtcIntersect1, sphere 262k tris"}) {
+    double embree = 0;
+    for (const ThroughputResult& t : rep.throughput)
+      if (t.name == ref) embree = t.rays_per_s_per_core;
+    if (sml > 0 && embree > 0)
+      out.push_back("SML dT=3 " + fmt("%.2f", sml / 1e6) + " M rays/s/core vs " + ref + " " + fmt("%.2f", embree / 1e6) +
+                    " M: " + fmt("%.0f %%", 100 * sml / embree) + " (target ≥ 30 %: " + (sml >= 0.3 * embree ? "MET" : "not met") +
+                    ")");
   }
-  if (sml > 0 && embree > 0)
-    out.push_back("SML dT=3 " + fmt("%.2f", sml / 1e6) + " M rays/s/core vs Embree " + fmt("%.2f", embree / 1e6) +
-                  " M: " + fmt("%.0f %%", 100 * sml / embree) + " (target ≥ 30 %: " + (sml >= 0.3 * embree ? "MET" : "not met") +
-                  ")");
   return out;
 }
 
