@@ -25,7 +25,7 @@ namespace pmsim {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kLensNm = 550.0;
+constexpr double kLensNm = kPhysicalLensNm;
 
 struct CVec2 {
   cd x, y;
@@ -168,15 +168,8 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   const int W = S->width(), H = S->height();
 
   Optics O;
-  LensSpec spec = load_lens_spec(asset_dir() + "/lenses/paper_rl425_rs43.json");
-  const Lens probe(spec);
-  const double half = 0.5 * probe.geometry().thickness_mm();
-  spec.thickness_mm.reset();
-  spec.center = {0.0, 0.0, kWorkingDistanceMm + half};
-  spec.axis = {0.0, 0.0, 1.0};
-  const Lens objective(spec);
-  spec.center = {0.0, 0.0, -(kWorkingDistanceMm + half)};
-  const Lens condenser(spec);
+  const Lens objective(physical_lens_spec(+1));
+  const Lens condenser(physical_lens_spec(-1));
   O.objective = &objective.geometry();
   O.condenser = &condenser.geometry();
   O.media = objective.media(kLensNm);

@@ -27,8 +27,8 @@
 namespace pmsim {
 
 // Lens used for the condenser and the objective front element: assets/lenses/paper_rl425_rs43.json
-// (the paper's near-hemispheric lens), its front vertex `kWorkingDistanceMm` from the sample.
-constexpr double kWorkingDistanceMm = 0.5;
+// (the paper's near-hemispheric lens), placed as the renderer places it: physical_lens_spec() in
+// core/microscope/lens_polarization.h (front vertex kLensWorkingDistanceMm from the sample).
 
 // scene.optics: lens_depth (dT), schlick. Spectral bands: scene.render.wavelengths (0: 32).
 // Runs on the calling thread's TBB arena.

@@ -23,18 +23,12 @@
 namespace pmsim {
 
 namespace {
-constexpr double kWorkingDistanceMm = 0.5;  // as core/microscope/lens_polarization.cpp
-constexpr double kLensNm = 550.0;
+constexpr double kLensNm = kPhysicalLensNm;
 constexpr int kBands = 8;                    // 50 nm: the ghost is ~0.2 % of the light
 constexpr int kMaxGridSide = 128;
 
 LensGhostTable trace_ghosts(int depth, bool schlick) {
-  LensSpec spec = load_lens_spec(asset_dir() + "/lenses/paper_rl425_rs43.json");
-  const double half = 0.5 * Lens(spec).geometry().thickness_mm();
-  spec.thickness_mm.reset();
-  spec.center = {0.0, 0.0, kWorkingDistanceMm + half};
-  spec.axis = {0.0, 0.0, 1.0};
-  const Lens lens(spec);
+  const Lens lens(physical_lens_spec(+1));
   const LensMedia media = lens.media(kLensNm);
   LensTraceOptions opt;
   opt.max_depth = depth;

@@ -13,17 +13,20 @@
 
 namespace pmsim {
 
-namespace {
-constexpr double kWorkingDistanceMm = 0.5;
-constexpr double kLensNm = 550.0;
-
-LensPolarizationTable trace_table(bool schlick) {
+LensSpec physical_lens_spec(int side) {
   LensSpec spec = load_lens_spec(asset_dir() + "/lenses/paper_rl425_rs43.json");
   const double half = 0.5 * Lens(spec).geometry().thickness_mm();
   spec.thickness_mm.reset();
-  spec.center = {0.0, 0.0, kWorkingDistanceMm + half};
+  spec.center = {0.0, 0.0, side * (kLensWorkingDistanceMm + half)};
   spec.axis = {0.0, 0.0, 1.0};
-  const Lens lens(spec);
+  return spec;
+}
+
+namespace {
+constexpr double kLensNm = kPhysicalLensNm;
+
+LensPolarizationTable trace_table(bool schlick) {
+  const Lens lens(physical_lens_spec(+1));
   const LensMedia media = lens.media(kLensNm);
   LensTraceOptions opt;
   opt.max_depth = 0;

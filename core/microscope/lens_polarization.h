@@ -17,7 +17,16 @@
 #include <glm/mat2x2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/lens/lens.h"
+
 namespace pmsim {
+
+// Where the physical model's lenses sit: the paper's lens (assets/lenses/paper_rl425_rs43.json)
+// on the axis, its vertex kLensWorkingDistanceMm from the specimen — above it for the objective
+// (side = +1), below for the condenser (side = −1) — traced at kPhysicalLensNm.
+constexpr double kLensWorkingDistanceMm = 0.5;
+constexpr double kPhysicalLensNm = 550.0;
+LensSpec physical_lens_spec(int side = +1);
 
 struct LensPolarizationTable {
   static constexpr int kSamples = 256;
