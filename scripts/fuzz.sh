@@ -40,7 +40,13 @@ for t in "${targets[@]}"; do
   done
   ls "$artifacts" >"$build/artifacts_before_$t.txt"
   set +e
-  "$build/tests/fuzz/fuzz_$t" "$corpus" -max_total_time="$seconds" -timeout=10 \
+  # PMSIM_FUZZ_SEED fixes libFuzzer's random seed (CI: the same run on the same code, so a
+  # submission is judged by its code, not by luck); unset, every run explores anew.
+  seed_opt=()
+  [ -n "${PMSIM_FUZZ_SEED:-}" ] && seed_opt=(-seed="$PMSIM_FUZZ_SEED")
+  # PMSIM_FUZZ_RUNS bounds the number of inputs as well (with a fixed seed: fully repeatable).
+  [ -n "${PMSIM_FUZZ_RUNS:-}" ] && seed_opt+=(-runs="$PMSIM_FUZZ_RUNS")
+  "$build/tests/fuzz/fuzz_$t" "$corpus" "${seed_opt[@]}" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=2048 -max_len=4096 -artifact_prefix="$artifacts/" -print_final_stats=1 \
     -close_fd_mask=1 2>"$build/fuzz_$t.log"
   rc=$?

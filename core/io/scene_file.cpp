@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -94,7 +95,10 @@ std::array<double, 3> as_vec3(const json& v) {
   for (int i = 0; i < 3; ++i) a[i] = as_number(v[i]);
   const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   if (!(len > 1e-12)) throw BadValue{"a direction cannot be the zero vector"};
-  for (double& c : a) c /= len;  // vectors are normalised (issue convention)
+  // Vectors are normalised (issue convention). One that is already unit to rounding is kept as
+  // written: dividing by a length of 1 ± 1 ulp would change its last bit on every save → load.
+  if (std::abs(len - 1.0) > 4.0 * std::numeric_limits<double>::epsilon())
+    for (double& c : a) c /= len;
   return a;
 }
 template <class E>

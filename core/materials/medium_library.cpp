@@ -139,6 +139,10 @@ Medium load_medium_file(const std::string& path) {
     if (!(range[0] > 0.0 && range[1] > range[0])) {
       r.fail("wavelength_range_nm", root["wavelength_range_nm"], "expected [min, max] with 0 < min < max");
     }
+    // pmsim traces 380–780 nm (and quotes n_d at 587.56 nm): a medium must be defined there.
+    if (!(range[0] <= 380.0 && range[1] >= 780.0)) {
+      r.fail("wavelength_range_nm", root["wavelength_range_nm"], "must cover the visible range 380-780 nm");
+    }
     m.set_wavelength_range(range[0], range[1]);
   } else if (model != "constant") {
     r.fail("wavelength_range_nm", json(), "missing required key (the formula's validity range)");

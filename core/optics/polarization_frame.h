@@ -25,9 +25,9 @@ inline glm::dvec3 any_perpendicular(const glm::dvec3& d) {
   return glm::normalize(glm::cross(d, helper));
 }
 
-// s = unit(d × N); below this |d × N| the incidence is treated as normal (the relative error of
-// the normalized cross product is ~1e-16/|d × N|, still tiny at 1e-12, and there r_s − r_p is
-// O(sin²θ) ≈ 1e-24, so the switch is invisible).
+// s = unit(d × N); below this |d × N| the incidence is treated as normal (there r_s − r_p is
+// O(sin²θ) ≈ 1e-24, so the switch is invisible; the direction error of the cross product itself
+// is corrected in polarization_frame).
 inline glm::dvec3 perpendicular_axis(const glm::dvec3& d, const glm::dvec3& N) {
   const glm::dvec3 c = glm::cross(d, N);
   const double len2 = glm::dot(c, c);
@@ -41,7 +41,14 @@ struct PolarizationFrame {
 };
 
 inline PolarizationFrame polarization_frame(const glm::dvec3& d, const glm::dvec3& N) {
-  const glm::dvec3 s = perpendicular_axis(d, N);
+  // Near normal incidence the normalized cross product carries a direction error of about
+  // 1e-16/|d × N| (1e-7 at |d × N| = 1e-9), enough to tilt s out of the plane ⟂ d and, after a
+  // few internal reflections, leave v_p measurably not ⟂ dir (fuzz input
+  // tests/fuzz/regressions/trace_lens/pol_not_perpendicular_near_normal.bin). Projecting s back
+  // onto the plane ⟂ d removes that: then s·d, s·r and s·t are all at rounding level, because r
+  // and t lie in span(d, N) and s·N = sinθ·(error) is second order.
+  glm::dvec3 s = perpendicular_axis(d, N);
+  s = glm::normalize(s - glm::dot(s, d) * d);
   return {s, glm::cross(d, s)};
 }
 inline glm::dvec3 p_refracted(const glm::dvec3& s, const glm::dvec3& t) { return glm::cross(t, s); }

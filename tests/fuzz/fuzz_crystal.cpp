@@ -42,8 +42,11 @@ double largest_singular_value(const JonesMatrix& J) {
   const double a = std::norm(J.xx) + std::norm(J.yx);
   const double d = std::norm(J.xy) + std::norm(J.yy);
   const complexd b = std::conj(J.xx) * J.xy + std::conj(J.yx) * J.yy;
-  const double tr = a + d, det = a * d - std::norm(b);
-  return std::sqrt(0.5 * (tr + std::sqrt(std::max(0.0, tr * tr - 4 * det))));
+  // Eigenvalues of JᴴJ = [[a, b], [b*, d]]: (a + d ± √((a − d)² + 4|b|²))/2. The discriminant in
+  // this form has no cancellation; tr² − 4·det would lose half the digits for a nearly unitary J
+  // (√(1e-16) = 1e-8), which is how an exactly lossless plate once read as a 5e-9 power gain.
+  const double disc = (a - d) * (a - d) + 4.0 * std::norm(b);
+  return std::sqrt(0.5 * (a + d + std::sqrt(disc)));
 }
 
 // Check a loaded crystal over the visible range.
