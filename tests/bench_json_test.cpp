@@ -80,11 +80,15 @@ TEST_F(BenchQuick, JsonRowsKeepTheirShapeAndConvergedStrategiesMatchTheReference
     const double mean = r["mean_de2000"];
     // Halving the reference's spectral samples must change nothing visible: mean CIEDE2000 below
     // 0.5 (1 is the just-noticeable difference; measured ≤ 0.17).
-    if (st.rfind("reference-half", 0) == 0) EXPECT_LT(mean, 0.5) << r.dump();
+    if (st.rfind("reference-half", 0) == 0) {
+      EXPECT_LT(mean, 0.5) << r.dump();
+    }
     // The renderer's converged 'auto' stops at an estimated ΔE of 0.5 between successive passes;
     // against the independent reference it must stay below 2 (measured ≤ 0.5 on every scene;
     // thin-section grain boundaries add sub-pixel sampling error).
-    if (st == "auto") EXPECT_LT(mean, 2.0) << r.dump();
+    if (st == "auto") {
+      EXPECT_LT(mean, 2.0) << r.dump();
+    }
   }
 }
 

@@ -83,7 +83,9 @@ TEST(MaterialFileInput, BrokenFilesNameTheFile) {
                                    std::string("{\"n\": 1e400}")}) {
     const std::string path = d.file("m.json", bytes);
     auto e = input_error_of([&] { load_medium_file(path); });
-    if (e) EXPECT_EQ(e->file, path) << e->what();
+    if (e) {
+      EXPECT_EQ(e->file, path) << e->what();
+    }
   }
 }
 
@@ -141,7 +143,9 @@ TEST(MineralFileInput, BrokenFilesNameTheFile) {
                                    std::string("{\"name\":\"qu\xe4rtz\"}"), std::string("\x89PNG")}) {
     const std::string path = d.file("m.json", bytes);
     auto e = input_error_of([&] { load_mineral_file(path); });
-    if (e) EXPECT_EQ(e->file, path) << e->what();
+    if (e) {
+      EXPECT_EQ(e->file, path) << e->what();
+    }
   }
   EXPECT_INPUT_ERROR(find_mineral("unobtainium"), "sample.mineral", "unobtainium");
 }
@@ -192,7 +196,9 @@ TEST(LensFileInput, BrokenFilesNameTheFile) {
                                    std::string("{\"glass\":\"N-BK\xff\"}"), std::string("[]")}) {
     const std::string path = d.file("l.json", bytes);
     auto e = input_error_of([&] { Lens lens(load_lens_spec(path)); });
-    if (e) EXPECT_EQ(e->file, path) << e->what();
+    if (e) {
+      EXPECT_EQ(e->file, path) << e->what();
+    }
   }
 }
 

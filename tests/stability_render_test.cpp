@@ -130,7 +130,9 @@ TEST(StabilityRender, EmptyStageBetweenParallelPolarsIsUniformWhite) {
     ASSERT_TRUE(st.finite);
     // The exposure convention: Y = 1 exactly where lit (outside the conoscopic disk: 0).
     EXPECT_NEAR(st.max_y, 1.0, 1e-6);
-    if (mode == ViewMode::Ortho) EXPECT_NEAR(st.min_y, 1.0, 1e-6);
+    if (mode == ViewMode::Ortho) {
+      EXPECT_NEAR(st.min_y, 1.0, 1e-6);
+    }
   }
 }
 
