@@ -338,6 +338,54 @@ TEST(Energy, NonAbsorbingPlateTransmitsAtMostTheIncidentPower) {
   }
 }
 
+// Fuzz findings F12 and F13 (regressions/plate_jones/F12_*, F13_*), both strongly birefringent
+// biaxial crystals between n = 1.0025 media at up to 85°. F12: the two wave normals are far apart
+// and their D directions legitimately skew; the optic-axis safeguard once replaced them with the
+// mean normal's orthogonal pair, and the plate created up to 0.4 % power. F13 (nγ ≈ 3): the
+// biaxial secant returned a non-root for the backward slow mode, and the plate created 45 %.
+TEST(Energy, StronglyBirefringentBiaxialPlateStaysPassiveToGrazing) {
+  for (const double ngamma : {1.98824, 2.98824}) {
+    CrystalIndices ci;
+    ci.uniaxial = false;
+    ci.nalpha = 1.0000001;
+    ci.nbeta = 1.00195;
+    ci.ngamma = ngamma;
+    const Crystal c = crystal_from_indices(ci);
+    for (const glm::dmat3& R :
+         {rotate_stage(biaxial_orientation({-1, -1, -1}, {-0.0118, -0.996, -1.0}), -9.92),
+          rotate_stage(biaxial_orientation({-0.0118, -1.0, -1.0}, {-0.9976, -1.0, 0.6}), -10.0),
+          biaxial_orientation({1, 0.2, 0.3}, {0, 0.5, 1}), biaxial_orientation({0, 1, 0.4}, {1, 0, 0.7})}) {
+      PlateSpec p = plate_of(c, R, 90.8, true);
+      p.n_outside = 1.0025;
+      const PreparedPlate P = prepare_plate(p, 380.0);
+      for (double s = 0.5; s < 0.999; s += 0.02) {
+        for (double az = 0; az < 2 * kPi; az += 0.3) {
+          const glm::dvec3 k = dir_from_sin(s, az);
+          const JonesMatrix J = plate_jones(P, k);
+          const double a = std::norm(J.xx) + std::norm(J.yx), d = std::norm(J.xy) + std::norm(J.yy);
+          const complexd b = std::conj(J.xx) * J.xy + std::conj(J.yx) * J.yy;
+          const double smax = 0.5 * (a + d) + std::sqrt((0.25 * (a - d) * (a - d) + std::norm(b)));
+          // Exact face solutions of true eigenmodes conserve energy to rounding; the 4×4 systems at
+          // k_z ≈ 0.14 lose a few digits, so 1e-9 (the bugs gained 2e-3 and 0.45).
+          EXPECT_LE(smax, 1.0 + 1e-9) << ngamma << " " << s << " " << az;
+          // Each mode found is a root of the Fresnel equation: its index is an eigenvalue of η
+          // projected ⟂ its own wave normal (relative 1e-12: the solver stops at 1e-15 in n).
+          const PlateModes m = plate_modes(P, k);
+          for (const auto& [sv, n] : {std::pair{m.s1, m.n1}, std::pair{m.s2, m.n2}}) {
+            glm::dvec3 u, v;
+            transverse_basis(sv, u, v);
+            const double puu = glm::dot(u, P.eta * u), puv = glm::dot(u, P.eta * v), pvv = glm::dot(v, P.eta * v);
+            const double mean = 0.5 * (puu + pvv), r = std::hypot(0.5 * (puu - pvv), puv);
+            const double inv_n2 = 1.0 / (n * n);
+            EXPECT_LT(std::min(std::abs(mean + r - inv_n2), std::abs(mean - r - inv_n2)), 1e-12 * inv_n2)
+                << ngamma << " " << s << " " << az;
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(FaceTransmission, NormalIncidenceModesTransmitOneMinusRAtEachFace) {
   const Crystal& c = find_mineral("calcite");
   const double nm = 1.54, wl = 589.3;

@@ -111,6 +111,42 @@ inline Eigen2 wave_normal_modes(const glm::dmat3& eta, const glm::dvec3& s, cons
 inline glm::dvec3 unit(const glm::dvec3& v) { return v / std::sqrt(glm::dot(v, v)); }
 inline double kz_for(double n, double q2) { return std::sqrt(std::max(n * n - q2, 0.0)); }
 
+// The root of h(n) = g(n, i) − n on [lo, hi] with h(lo) ≥ 0 ≥ h(hi): Illinois regula falsi,
+// bisecting whenever an Illinois step gains less than half the bracket.
+template <class G>
+double bracketed_mode_index(const G& g, int i, double lo, double hi) {
+  double flo = g(lo, i) - lo, fhi = g(hi, i) - hi;
+  if (flo <= 0.0) return lo;
+  if (fhi >= 0.0) return hi;
+  int side = 0;
+  for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; ++it) {
+    const double width = hi - lo;
+    double m = (lo * fhi - hi * flo) / (fhi - flo);
+    if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
+    const double fm = g(m, i) - m;
+    if (fm == 0.0) return m;
+    if (fm > 0.0) {
+      lo = m;
+      flo = fm;
+      if (side == 1) fhi *= 0.5;
+      side = 1;
+    } else {
+      hi = m;
+      fhi = fm;
+      if (side == -1) flo *= 0.5;
+      side = -1;
+    }
+    if (hi - lo > 0.5 * width) {  // slow progress: bisect once
+      const double b = 0.5 * (lo + hi), fb = g(b, i) - b;
+      if (fb == 0.0) return b;
+      (fb > 0.0 ? lo : hi) = b;
+      (fb > 0.0 ? flo : fhi) = fb;
+      side = 0;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
 // The two eigenmodes travelling forward (dir = +1) or backward (dir = −1) for tangential q.
 struct ModePair {
   double kz[2];        // units of k0; [0] fast, [1] slow
@@ -152,12 +188,18 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
     };
     const Eigen2 e0 = wave_normal_modes(P.eta, unit(glm::dvec3(qx, qy, dir * kz_for(P.mean_n, q2))), s_hat);
     const double start[2] = {1.0 / std::sqrt(e0.lam_fast), 1.0 / std::sqrt(e0.lam_slow)};
+    const double n_max = std::max({P.n_principal.x, P.n_principal.y, P.n_principal.z});
     for (int i = 0; i < 2; ++i) {
       double n0 = start[i], f0 = g(n0, i) - n0;
-      double n1 = n0 + f0;
-      for (int it = 0; it < 30 && f0 != 0.0; ++it) {
-        const double f1 = g(n1, i) - n1;
-        if (std::abs(f1) <= 1e-15) break;
+      double n1 = n0 + f0, f1 = f0;
+      bool converged = f0 == 0.0;
+      if (converged) n1 = n0;
+      for (int it = 0; it < 30 && !converged; ++it) {
+        f1 = g(n1, i) - n1;
+        if (std::abs(f1) <= 1e-15) {
+          converged = true;
+          break;
+        }
         const double den = f1 - f0;
         double n2 = den != 0.0 ? n1 - f1 * (n1 - n0) / den : n1 + f1;
         if (!(std::abs(n2 - n1) <= 2.0 * std::abs(f1) + 1e-15)) n2 = n1 + f1;  // secant went astray
@@ -165,15 +207,29 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
         f0 = f1;
         n1 = n2;
       }
+      // Strong birefringence at steep incidence makes g expand by (nγ − nα)·tanθ/n ≫ 1 and the
+      // secant can wander off (a fuzzed nγ = 3 crystal at 82° once returned a non-root, and the
+      // exit face then created 45 % power). h(n) = g(n) − n has exactly one root between n = q
+      // (k_z = 0, where h = n_i(s) − q > 0 since every index exceeds q < 1) and n_max (h ≤ 0):
+      // the line of constant tangential k meets each sheet of the index surface once on each side
+      // (f(k_z) = det(ε + kkᵀ − k²I) is a quartic, positive at k_z = 0, with those four roots). So a
+      // bracketed solve on [q, n_max] always finds the right mode.
+      if (!converged && std::abs(f1) <= 1e-13) converged = true;  // rounding floor of g
+      // Lower end k_z = 1e-12 rather than 0: at normal incidence (q = 0) the wave normal of
+      // k_z = 0 is undefined.
+      if (!converged || !(n1 >= std::sqrt(q2) && n1 <= n_max * (1 + 1e-12)))
+        n1 = bracketed_mode_index(g, i, std::sqrt(q2 + 1e-24), n_max);
       mp.kz[i] = dir * kz_for(n1, q2);
     }
   }
+  double gap = 1.0;  // smallest relative eigenvalue gap (λf − λs)/λf at the two wave normals
   for (int i = 0; i < 2; ++i) {
     mp.n[i] = std::sqrt(q2 + mp.kz[i] * mp.kz[i]);
     mp.s[i] = glm::dvec3(qx, qy, mp.kz[i]) / mp.n[i];
     const Eigen2 e = wave_normal_modes(P.eta, mp.s[i], s_hat);
     mp.dp[i] = i == 0 ? e.fx : -e.fy;
     mp.ds[i] = i == 0 ? e.fy : e.fx;
+    gap = std::min(gap, (e.lam_fast - e.lam_slow) / e.lam_fast);
   }
   // Right-handed pair (det > 0) so that σ2 in the mode basis is a counter-clockwise rotation.
   double det = mp.dp[0] * mp.ds[1] - mp.ds[0] * mp.dp[1];
@@ -184,8 +240,12 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
   }
   // Next to an optic axis the D directions turn fast around it, and the two normals (which differ
   // by rounding there) can resolve them inconsistently. The modes are then nearly degenerate and
-  // any orthogonal pair describes them: take the pair of the mean normal (det = 1).
-  if (det < 0.99) {
+  // any orthogonal pair describes them: take the pair of the mean normal (det = 1). Only then:
+  // away from an axis two well-separated normals legitimately carry skew D directions (each ⟂ its
+  // own normal), and replacing them broke the face solutions' energy balance by up to 7 % for a
+  // strongly birefringent crystal at 82° (fuzz finding regressions/plate_jones/F12_*). A gap of
+  // 1e-6 leaves the eigenvectors good to ~1e-10 (rounding 1e-16 over the gap).
+  if (det < 0.99 && gap < 1e-6) {
     const Eigen2 e = wave_normal_modes(P.eta, unit(glm::dvec3(qx, qy, 0.5 * (mp.kz[0] + mp.kz[1]))), s_hat);
     mp.dp[0] = e.fx;
     mp.ds[0] = e.fy;
@@ -249,7 +309,9 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
   PlateModes& m = out.m;
   const double qx = k_air.x, qy = k_air.y;
   const double q2 = qx * qx + qy * qy;
-  const double q = std::sqrt(q2);
+  // hypot, not √q2: for q ~ 1e-158 (fuzz finding F14) q2 is a denormal with a few significant
+  // bits, and s_hat came out 1e-8 off unit length, enough to make a lossless plate gain 2e-8.
+  const double q = std::hypot(qx, qy);
   out.s_hat = q > 0.0 ? glm::dvec3(-qy / q, qx / q, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
   const glm::dvec3& s_hat = out.s_hat;
   out.p_air = glm::cross(s_hat, k_air);
