@@ -27,35 +27,59 @@ mkdir -p "$TMPDIR"
 found=0
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"
+  seeds="$build/seeds/$t"
   artifacts="$build/artifacts/$t"
-  mkdir -p "$corpus" "$artifacts"
-  PMSIM_FUZZ_MAKE_SEEDS="$corpus" "$build/tests/fuzz/fuzz_$t"
+  rm -rf "$seeds"
+  mkdir -p "$corpus" "$seeds" "$artifacts"
+  PMSIM_FUZZ_MAKE_SEEDS="$seeds" "$build/tests/fuzz/fuzz_$t"
   regressions="$root/tests/fuzz/regressions/$t"
   mkdir -p "$regressions"
-  # Past findings seed the corpus too, except open ones (DISABLED_*: they would stop the run at
+  # Past findings seed the run too, except open ones (DISABLED_*: they would stop the run at
   # once; the fuzzer is expected to rediscover them and keeps the new input as an artifact).
   for f in "$regressions"/*; do
-    case "$(basename "$f")" in DISABLED_*|README.md) continue ;; esac
-    [ -f "$f" ] && cp "$f" "$corpus/regression_$(basename "$f")"
+    case "$(basename "$f")" in DISABLED_*|README.md|.gitkeep) continue ;; esac
+    [ -f "$f" ] && cp "$f" "$seeds/regression_$(basename "$f")"
   done
+  # The seeds go in by name order (-seed_inputs): libFuzzer orders a corpus directory as readdir
+  # returns it, which differs from one file system to the next, and that order steers every
+  # mutation after it. A CI run on another machine once explored differently from the same seed.
+  (cd "$seeds" && ls | LC_ALL=C sort | sed "s|^|$seeds/|" | paste -sd, -) >"$build/seed_list_$t.txt"
   ls "$artifacts" >"$build/artifacts_before_$t.txt"
+  started=$SECONDS
   set +e
   # PMSIM_FUZZ_SEED fixes libFuzzer's random seed (CI: the same run on the same code, so a
-  # submission is judged by its code, not by luck); unset, every run explores anew.
+  # submission is judged by its code, not by luck): the corpus folder starts empty and is not
+  # reloaded mid-run, and PMSIM_FUZZ_RUNS bounds the number of inputs, so the inputs tried depend
+  # on the code alone (the time bound is only a backstop). Unset, every run explores anew and keeps
+  # growing $corpus.
+  # Address-space randomisation is off too, and so is libFuzzer's use of compared values in its
+  # mutations (-use_cmp=0): pointers are among those values, and heap addresses differ from run to
+  # run even without ASLR, so two runs of one seed diverged after a few hundred inputs.
   seed_opt=()
-  [ -n "${PMSIM_FUZZ_SEED:-}" ] && seed_opt=(-seed="$PMSIM_FUZZ_SEED")
-  # PMSIM_FUZZ_RUNS bounds the number of inputs as well (with a fixed seed: fully repeatable).
+  launcher=()
+  if [ -n "${PMSIM_FUZZ_SEED:-}" ]; then
+    rm -rf "$corpus"
+    mkdir -p "$corpus"
+    seed_opt=(-seed="$PMSIM_FUZZ_SEED" -reload=0 -use_cmp=0)
+    if setarch "$(uname -m)" -R true 2>/dev/null; then
+      launcher=(setarch "$(uname -m)" -R)
+    else
+      echo "fuzz: setarch -R is not permitted here; runs may differ between machines" >&2
+    fi
+  fi
   [ -n "${PMSIM_FUZZ_RUNS:-}" ] && seed_opt+=(-runs="$PMSIM_FUZZ_RUNS")
-  "$build/tests/fuzz/fuzz_$t" "$corpus" "${seed_opt[@]}" -max_total_time="$seconds" -timeout=10 \
-    -rss_limit_mb=2048 -max_len=4096 -artifact_prefix="$artifacts/" -print_final_stats=1 \
-    -close_fd_mask=1 2>"$build/fuzz_$t.log"
+  export PMSIM_FUZZ_SCRATCH="$TMPDIR/$t"
+  mkdir -p "$PMSIM_FUZZ_SCRATCH"
+  "${launcher[@]}" "$build/tests/fuzz/fuzz_$t" "$corpus" -seed_inputs=@"$build/seed_list_$t.txt" "${seed_opt[@]}" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+    -artifact_prefix="$artifacts/" -print_final_stats=1 -close_fd_mask=1 2>"$build/fuzz_$t.log"
   rc=$?
   set -e
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$build/fuzz_$t.log" | grep -o '[0-9]*$' || echo "?")
   cov=$(grep -o 'cov: [0-9]*' "$build/fuzz_$t.log" | tail -1 | grep -o '[0-9]*' || echo "?")
   ls "$artifacts" | grep -vxF -f "$build/artifacts_before_$t.txt" >"$build/artifacts_new_$t.txt" || true
   new=$(wc -l <"$build/artifacts_new_$t.txt")
-  echo "fuzz: $t: ${seconds} s, $execs inputs, coverage $cov edges, $new new finding(s), exit $rc"
+  echo "fuzz: $t: $((SECONDS - started)) s (bound ${seconds} s), $execs inputs, coverage $cov edges, $new new finding(s), exit $rc"
   if [ "$rc" -ne 0 ] || [ "$new" -gt 0 ]; then
     found=1
     while read -r name; do

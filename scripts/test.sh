@@ -5,7 +5,7 @@
 #  2. the same suite (without the UI) built with clang under AddressSanitizer + UndefinedBehavior-
 #     Sanitizer, in a tree that also holds the libFuzzer targets;
 #  3. the progressive renderer's cancel/restart test under ThreadSanitizer;
-#  4. every fuzz target for a short repeatable run (seed 1, at most 4000 inputs or 20 s each) from
+#  4. every fuzz target for a short repeatable run (seed 1, 10 000 inputs each; 120 s backstop) from
 #     the seed corpus and every input it ever failed on.
 # PMSIM_QUICK=1 runs step 1 only (for a fast local loop).
 set -euo pipefail
@@ -25,7 +25,7 @@ echo "test.sh: sanitizer builds and suites $((t2 - t1)) s"
 # at most PMSIM_FUZZ_RUNS inputs a target), so it judges the code, not luck; longer exploratory
 # runs: scripts/fuzz.sh 600. A finding fails the run: its input is in tests/fuzz/regressions/
 # of this checkout, to be committed with its fix.
-PMSIM_FUZZ_SEED="${PMSIM_FUZZ_SEED:-1}" PMSIM_FUZZ_RUNS="${PMSIM_FUZZ_RUNS:-4000}" \
-  PMSIM_FUZZ_BUILD="$root/build-asan" bash "$root/scripts/fuzz.sh" "${PMSIM_FUZZ_SECONDS:-20}"
+PMSIM_FUZZ_SEED="${PMSIM_FUZZ_SEED:-1}" PMSIM_FUZZ_RUNS="${PMSIM_FUZZ_RUNS:-10000}" \
+  PMSIM_FUZZ_BUILD="$root/build-asan" bash "$root/scripts/fuzz.sh" "${PMSIM_FUZZ_SECONDS:-120}"
 t3=$(date +%s)
 echo "test.sh: fuzzing $((t3 - t2)) s; total $((t3 - t0)) s"

@@ -86,11 +86,16 @@ class ByteWriter {
 };
 
 // A per-process scratch file for parsers that take a path (the real input path: open, read,
-// parse, validate).
+// parse, validate). PMSIM_FUZZ_SCRATCH names a folder private to one run (scripts/fuzz.sh): the
+// path is then the same in every run, as a repeatable run needs (error messages quote it, and
+// libFuzzer mutates with the values it sees compared); otherwise the pid keeps processes apart.
 inline std::string write_scratch(const std::string& tag, const std::uint8_t* data, std::size_t size) {
+  const char* own = std::getenv("PMSIM_FUZZ_SCRATCH");
   const char* dir = std::getenv("TMPDIR");
-  const std::string path = std::string(dir && *dir ? dir : "/tmp") + "/pmsim_fuzz_" +
-                           std::to_string(::getpid()) + "_" + tag + ".json";
+  const std::string path =
+      own && *own ? std::string(own) + "/pmsim_fuzz_" + tag + ".json"
+                  : std::string(dir && *dir ? dir : "/tmp") + "/pmsim_fuzz_" + std::to_string(::getpid()) + "_" +
+                        tag + ".json";
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   f.close();
