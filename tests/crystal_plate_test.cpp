@@ -386,6 +386,20 @@ TEST(Energy, StronglyBirefringentBiaxialPlateStaysPassiveToGrazing) {
   }
 }
 
+// Fuzz findings F14/F15: a direction 1e-158 or 1e-320 (denormal) off the normal once built the
+// TE unit vector from an imprecise q and made a lossless plate gain 2e-8 and 4e-9.
+TEST(Energy, DenormalTiltsFromTheNormalStayUnitary) {
+  const Crystal& c = find_mineral("augite");
+  const PlateSpec p = plate_of(c, biaxial_orientation({0, 1, 1}, {1, 0, 0.4}), 5e4, false);
+  for (const glm::dvec3& k : {glm::dvec3(8.9e-159, 2.7e-161, 1), glm::dvec3(7.55e-320, 4.94e-324, 1),
+                              glm::dvec3(4.94e-324, 0, 1), glm::dvec3(1e-300, -1e-300, 1)}) {
+    const JonesMatrix J = plate_jones(p, k, 380.8);
+    // Without faces the plate is unitary: both columns of unit norm to rounding (4 ulp).
+    EXPECT_NEAR(std::norm(J.xx) + std::norm(J.yx), 1.0, 1e-15) << k.x;
+    EXPECT_NEAR(std::norm(J.xy) + std::norm(J.yy), 1.0, 1e-15) << k.x;
+  }
+}
+
 TEST(FaceTransmission, NormalIncidenceModesTransmitOneMinusRAtEachFace) {
   const Crystal& c = find_mineral("calcite");
   const double nm = 1.54, wl = 589.3;

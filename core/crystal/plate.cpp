@@ -309,10 +309,17 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
   PlateModes& m = out.m;
   const double qx = k_air.x, qy = k_air.y;
   const double q2 = qx * qx + qy * qy;
-  // hypot, not √q2: for q ~ 1e-158 (fuzz finding F14) q2 is a denormal with a few significant
-  // bits, and s_hat came out 1e-8 off unit length, enough to make a lossless plate gain 2e-8.
-  const double q = std::hypot(qx, qy);
-  out.s_hat = q > 0.0 ? glm::dvec3(-qy / q, qx / q, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+  // s_hat from (qx, qy) rescaled to their larger magnitude first: q² of q ~ 1e-158 is a denormal
+  // with a few significant bits (fuzz finding F14), and q ~ 1e-320 is itself a denormal whose
+  // quotients are good to 1e-5 only (F15); either left s_hat off unit length, and a lossless plate
+  // then gained up to 2e-8.
+  const double q_big = std::max(std::abs(qx), std::abs(qy));
+  if (q_big > 0.0) {
+    const double ux = qx / q_big, uy = qy / q_big, len = std::hypot(ux, uy);
+    out.s_hat = glm::dvec3(-uy / len, ux / len, 0.0);
+  } else {
+    out.s_hat = glm::dvec3(0.0, 1.0, 0.0);
+  }
   const glm::dvec3& s_hat = out.s_hat;
   out.p_air = glm::cross(s_hat, k_air);
   const double d = P.thickness_um;
