@@ -74,6 +74,16 @@ TEST(LensSpecJson, BadInputNamesTheKey) {
   j["back"] = {{"radius_mm", 5.0}};  // meniscus whose caps cross: thickness would be < 0
   j["front"] = {{"radius_mm", -5.0}};
   EXPECT_EQ(key_of_error(j), "ledge_mm");
+  // Lengths beyond a kilometre (fuzz finding T1: a centre at 3e105 mm made the tracer's algebra
+  // overflow into NaN) are refused with the key; a kilometre itself is accepted.
+  j = issue_example();
+  j["center"] = {0, -3e105, 0};
+  EXPECT_EQ(key_of_error(j), "center[1]");
+  j["center"] = {1e6, 0, 0};
+  EXPECT_NO_THROW(LensGeometry(lens_spec_from_json(j)));
+  j = issue_example();
+  j["back"] = {{"radius_mm", -2e9}};
+  EXPECT_EQ(key_of_error(j), "back.radius_mm");
   // Missing front object = plane.
   j = issue_example();
   j.erase("front");

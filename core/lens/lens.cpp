@@ -145,14 +145,26 @@ LensGeometry::LensGeometry(const LensSpec& s) {
                      "axis must be a non-zero vector");
   axis_ = s.axis / alen;
   center_ = s.center;
+  // Every length within a kilometre: far beyond any microscope or camera, and inside the range
+  // where the ray–sphere algebra (squares of distances, products with radii) stays finite and
+  // resolves a micrometre. A centre at 3e105 mm once turned a traced ray into NaN (fuzz finding
+  // regressions/trace_lens/T1_*).
+  constexpr double kMaxLength_mm = 1e6;
+  const char* ckey[3] = {"center[0]", "center[1]", "center[2]"};
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(center_[k]) <= kMaxLength_mm))
+      throw InputError(f, ckey[k], num(center_[k]), "must be within ±1e6 mm");
   rho_ = s.radius_mm;
   if (!(rho_ > 0.0) || !std::isfinite(rho_))
     throw InputError(f, "radius_mm", num(rho_), "aperture radius must be > 0");
+  if (!(rho_ <= kMaxLength_mm)) throw InputError(f, "radius_mm", num(rho_), "must be at most 1e6 mm");
   R_[0] = s.front_radius_mm;
   R_[1] = s.back_radius_mm;
   const char* rkey[2] = {"front.radius_mm", "back.radius_mm"};
   for (int k = 0; k < 2; ++k) {
     if (!std::isfinite(R_[k])) throw InputError(f, rkey[k], num(R_[k]), "must be finite");
+    if (std::abs(R_[k]) > 1e3 * kMaxLength_mm)  // 1e9 mm: already a plane to 1e-13 over 1 km
+      throw InputError(f, rkey[k], num(R_[k]), "|radius| must be at most 1e9 mm (0 for a plane)");
     if (R_[k] != 0.0 && std::abs(R_[k]) < rho_)
       throw InputError(f, rkey[k], num(R_[k]),
                        "|radius| must be at least the aperture radius_mm " + num(rho_));
@@ -169,6 +181,9 @@ LensGeometry::LensGeometry(const LensSpec& s) {
     ledge_ = *s.ledge_mm;
     thickness_ = ledge_ - sag2 + sag1;
   }
+  if (!(thickness_ <= kMaxLength_mm))
+    throw InputError(f, s.thickness_mm ? "thickness_mm" : "ledge_mm",
+                     num(s.thickness_mm ? *s.thickness_mm : *s.ledge_mm), "must be at most 1e6 mm");
   if (!(thickness_ > 0.0))
     throw InputError(f, s.thickness_mm ? "thickness_mm" : "ledge_mm",
                      num(s.thickness_mm ? *s.thickness_mm : *s.ledge_mm),
