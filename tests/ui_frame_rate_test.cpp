@@ -31,7 +31,7 @@ bool frames_until_new_image(UiDriver& d, std::uint64_t uploads, double deadline_
 }
 
 struct FirstImage {
-  double mean_frames = 0;
+  double mean_frames = 0, mean_ms = 0, max_ms = 0;
   std::uint64_t max_frames = 0, changes = 0;
 };
 
@@ -39,6 +39,7 @@ struct FirstImage {
 // changed scene's first image is on screen; the App counts the frames.
 FirstImage measure_first_image(UiDriver& d, int changes) {
   const AppCounters c0 = d.app().counters();
+  double sum_ms = 0, max_ms = 0;
   for (int i = 0; i < changes; ++i) {
     EXPECT_TRUE(d.app().set("stage_deg=" + std::to_string(5 * (i + 1))));
     const auto start = std::chrono::steady_clock::now();
@@ -47,9 +48,14 @@ FirstImage measure_first_image(UiDriver& d, int changes) {
     } while (!d.app().image_current() &&
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 300);
     EXPECT_TRUE(d.app().image_current());
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    sum_ms += ms;
+    max_ms = std::max(max_ms, ms);
   }
   const AppCounters& c = d.app().counters();
   FirstImage f;
+  f.mean_ms = sum_ms / std::max(1, changes);
+  f.max_ms = max_ms;
   f.changes = c.first_images - c0.first_images;
   f.mean_frames = static_cast<double>(c.first_image_frames - c0.first_image_frames) /
                   std::max<std::uint64_t>(1, f.changes);
@@ -70,7 +76,9 @@ TEST(UiFrameRate, ReportsFramesPerSecondWhileRendering) {
   const size_t base = d->frame_times().ms.size();
   const auto uploads0 = d->app().counters().uploads;
   for (int i = 0; i < 60; ++i) {
-    if (i % 15 == 0) ASSERT_TRUE(d->app().set("stage_deg=" + std::to_string(7 * (i / 15 + 1))));
+    if (i % 15 == 0) {
+      ASSERT_TRUE(d->app().set("stage_deg=" + std::to_string(7 * (i / 15 + 1))));
+    }
     ASSERT_TRUE(d->frame());
   }
   FrameTimes refining;
@@ -108,12 +116,13 @@ TEST(UiFrameRate, ReportsFramesPerSecondWhileRendering) {
 
   std::printf("[fps] 1280x800 %s: refining 512^2 section %.1f fps (p95 %.1f ms, %llu new images "
               "in %zu frames), dragging the stage %.1f fps (p95 %.1f ms); first image of a change "
-              "on screen after %.1f frames on average (section 512^2), %.1f (conoscopic figure "
-              "512^2), %llu at most\n",
+              "on screen after %.1f frames, %.1f ms on average (section 512^2; at most %.1f ms), %.1f "
+              "frames, %.1f ms (conoscopic figure 512^2; at most %.1f ms), %llu frames at most\n",
               d->gl_name(), refining.fps(), refining.percentile_ms(0.95),
               static_cast<unsigned long long>(uploads1 - uploads0), refining.ms.size(),
-              dragging.fps(), dragging.percentile_ms(0.95), section.mean_frames,
-              figure.mean_frames, static_cast<unsigned long long>(figure.max_frames));
+              dragging.fps(), dragging.percentile_ms(0.95), section.mean_frames, section.mean_ms,
+              section.max_ms, figure.mean_frames, figure.mean_ms, figure.max_ms,
+              static_cast<unsigned long long>(std::max(section.max_frames, figure.max_frames)));
 }
 
 }  // namespace

@@ -127,7 +127,7 @@ const LensGhostTable& lens_ghost_table(int depth, bool schlick) {
   return *slot;
 }
 
-LensGhostImage lens_ghost_image(const MicroscopeSetup& S) {
+LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool>* cancel) {
   LensGhostImage img;
   const Scene& sc = S.scene;
   if (!S.lenses || sc.optics.lens_depth < 2 || sc.mode != ViewMode::Cono || !sc.bertrand_in) return img;
@@ -189,7 +189,8 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S) {
   std::vector<std::vector<std::pair<int, glm::dvec3>>> splats(GH);  // objective: per source row
   std::vector<int> row_paths(GH, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, GH, 2), [&](const tbb::blocked_range<int>& r) {
-    for (int cy = r.begin(); cy != r.end(); ++cy)
+    for (int cy = r.begin(); cy != r.end(); ++cy) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) return;
       for (int cx = 0; cx < GW; ++cx) {
         const double px = std::min((cx + 0.5) * stride, W - 0.5), py = std::min((cy + 0.5) * stride, H - 0.5);
         glm::dvec3 k;
@@ -291,7 +292,9 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S) {
           grid[(static_cast<std::size_t>(cy) * GW + cx) * 2 + 1] += Ic * weight[b];
         }
       }
+    }
   });
+  if (cancel && cancel->load()) return img;
   for (int cy = 0; cy < GH; ++cy) {
     img.paths += row_paths[cy];
     for (const auto& [cell, v] : splats[cy]) grid[static_cast<std::size_t>(cell) * 2] += v;

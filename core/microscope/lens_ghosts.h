@@ -19,6 +19,7 @@
 // came from the aperture direction where the objective's path from k exits, with the same s/p
 // amplitudes; the lit aperture (condenser NA) has uniform radiance, which the path conserves
 // (radiance theorem) up to its throughput.
+#include <atomic>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -57,6 +58,7 @@ struct LensGhostImage {
 
 // The ghost light of a conoscopic (Bertrand in) setup with physical lenses and dT ≥ 2; empty xyz
 // otherwise. Computed on a grid of at most ~128² source directions, bilinearly spread to pixels.
-LensGhostImage lens_ghost_image(const MicroscopeSetup& setup);
+// A set `cancel` stops it between grid rows (the result is then incomplete: discard it).
+LensGhostImage lens_ghost_image(const MicroscopeSetup& setup, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace pmsim

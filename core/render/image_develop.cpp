@@ -11,7 +11,7 @@
 namespace pmsim {
 
 void develop_image(const MicroscopeSetup& S, const std::vector<glm::dvec3>& units, bool mono,
-                   RenderImage& out) {
+                   RenderImage& out, const std::atomic<bool>* cancel) {
   const int W = S.width(), H = S.height();
   out.width = W;
   out.height = H;
@@ -19,6 +19,7 @@ void develop_image(const MicroscopeSetup& S, const std::vector<glm::dvec3>& unit
   out.xyz.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
   const glm::dvec3 white = illuminant_white_xyz(S.scene.illuminant);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < W; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * W + x;

@@ -35,7 +35,7 @@ constexpr int kMaxBands = 4096;     // ~0.1 nm: beyond this a level costs more t
 // over units u with u % stride == 0.
 double unit_error(const MicroscopeSetup& S, const std::vector<double>& area,
                   const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b,
-                  std::size_t stride) {
+                  std::size_t stride, const std::atomic<bool>& cancel) {
   const glm::dvec3 white = illuminant_white_xyz(S.scene.illuminant);
   const bool mono = S.scene.render.single_wavelength_nm > 0;
   struct Acc {
@@ -45,6 +45,7 @@ double unit_error(const MicroscopeSetup& S, const std::vector<double>& area,
   const Acc acc = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m, 2048), Acc{},
       [&](const tbb::blocked_range<std::size_t>& r, Acc s) {
+        if (cancel.load(std::memory_order_relaxed)) return s;  // the caller checks it next
         for (std::size_t j = r.begin(); j != r.end(); ++j) {
           const std::size_t u = j * stride;
           if (area[u] <= 0) continue;
@@ -66,11 +67,13 @@ double unit_error(const MicroscopeSetup& S, const std::vector<double>& area,
 // after every pass. Progressive (the UI): every level is a full image, starting coarse. Final
 // (pmsim-render): the first level is only computed on a subset of the units, enough to estimate
 // the error of the next, full level. Returns false when cancelled.
-// The first pass of a large conoscopic figure (what a UI shows the moment a control moves): the
-// per-pixel set-up (three mode solutions per pixel) dominates it, so it runs on a grid 4× coarser
-// each way with 16 bands and is spread bilinearly over the lit pixels; the full-resolution passes
-// follow. The figure is smooth on that scale except near its dark isochromes, which the next pass
-// restores.
+// The first pass of a large conoscopic figure, thin section or wedge (what a UI shows the moment a
+// control moves): the per-pixel set-up (three mode solutions per pixel of a figure; the grain or
+// thickness under every pixel and sub-pixel of a section or wedge) dominates it, so it runs on a
+// grid 4× coarser each way with 16 bands and is spread bilinearly over the lit pixels; the
+// full-resolution passes follow. A figure is smooth on that scale except near its dark isochromes,
+// a section except along its grain boundaries, which the next pass restores. A uniform plate in
+// parallel light is one spectral evaluation for the whole field and needs no preview.
 constexpr int kPreviewFactor = 4;
 constexpr int kPreviewBands = 16;
 constexpr long long kPreviewMinPixels = 256LL * 256LL;
@@ -78,6 +81,11 @@ constexpr long long kPreviewMinPixels = 256LL * 256LL;
 // A biaxial figure costs ~10x more per direction (the mode search), and its isochromes are far
 // apart in a thin plate: its preview grid is 8x coarser each way.
 constexpr int kPreviewFactorBiaxial = 8;
+
+// Before that preview, a glance twice as coarse again (1/8, biaxial 1/16 each way: 64² for a 512²
+// field): 4× less work, so that with a UI drawing frames on the same two cores the first image
+// of a change is on screen a frame after it; the 1/4 preview follows a few milliseconds later.
+constexpr int kGlanceFactor = 2;
 
 int preview_factor(const Scene& scene) {
   if (!scene.sample_in || scene.sample.type != SampleType::Plate) return kPreviewFactor;
@@ -90,18 +98,22 @@ int preview_factor(const Scene& scene) {
   }
 }
 
+bool bfp_view(const Scene& scene) { return scene.mode == ViewMode::Cono && scene.bertrand_in; }
+
 bool wants_preview(const Scene& scene) {
-  return scene.mode == ViewMode::Cono && scene.bertrand_in &&
-         static_cast<long long>(scene.render.width) * scene.render.height >= kPreviewMinPixels;
+  const bool per_pixel = bfp_view(scene) || (scene.sample_in && scene.sample.type != SampleType::Plate);
+  return per_pixel && static_cast<long long>(scene.render.width) * scene.render.height >= kPreviewMinPixels;
 }
 
 // Returns false when cancelled.
 template <class Publish>
-bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::time_point t0,
-                 std::uint64_t generation, Publish&& publish) {
+bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<bool>& cancel,
+                 Clock::time_point t0, std::uint64_t generation, Publish&& publish) {
   Scene c = scene;
+  // Without the lens ghosts (internal reflections, optics.lens_depth ≥ 2): a fraction of a percent
+  // of the light whose tracing dominated the physical lenses' preview (70–95 ms with, 15 without).
+  c.optics.lens_depth = std::min(c.optics.lens_depth, 1);
   const int W = scene.render.width, H = scene.render.height;
-  const int factor = preview_factor(scene);
   c.render.width = std::max(1, (W + factor - 1) / factor);
   c.render.height = std::max(1, (H + factor - 1) / factor);
   const int cw = c.render.width, ch = c.render.height;
@@ -120,47 +132,75 @@ bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::tim
   if (cancel) return false;
   RenderImage coarse;
   develop_image(S, units, level.monochromatic, coarse);
+  // Spread over the full grid. field_from_pixel is separable (x from the column, y from the
+  // row), so the coarse-grid position and bilinear weights are tabulated once per column and
+  // row; the per-pixel work is the lit test and four weighted reads (the upsampling was over half
+  // of the preview when every pixel recomputed its field point and direction).
   RenderImage img;
   img.width = W;
   img.height = H;
-  img.rgb.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
-  img.xyz.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
-  auto lit = [&](int x, int y) {
-    const std::size_t i = static_cast<std::size_t>(y) * cw + x;
-    return S.pixel_offset[i + 1] > S.pixel_offset[i];
+  img.rgb.resize(static_cast<std::size_t>(W) * H * 3);
+  img.xyz.resize(static_cast<std::size_t>(W) * H * 3);
+  struct Axis {
+    double f = 0.0;    // field coordinate of the pixel centre
+    int i0 = 0;        // coarse cell below (may be −1 or n − 1 at the rim)
+    float w1 = 0.0f;   // weight of cell i0 + 1
+    int nearest = 0;   // nearest coarse cell (clamped)
   };
   const double half_c = 0.5 * std::min(cw, ch);
+  auto make_axis = [&](int n_full, int n_coarse, bool is_x) {
+    std::vector<Axis> a(n_full);
+    for (int i = 0; i < n_full; ++i) {
+      const glm::dvec2 f = is_x ? field_from_pixel(W, H, i + 0.5, 0.5) : field_from_pixel(W, H, 0.5, i + 0.5);
+      const double fc = is_x ? f.x : f.y;
+      // The same field point on the coarse grid (pixel centres at i + 0.5; y grows downwards).
+      const double g = is_x ? fc * half_c + 0.5 * n_coarse - 0.5 : 0.5 * n_coarse - fc * half_c - 0.5;
+      a[i].f = fc;
+      a[i].i0 = static_cast<int>(std::floor(g));
+      a[i].w1 = static_cast<float>(g - a[i].i0);
+      a[i].nearest = std::clamp(static_cast<int>(std::lround(g)), 0, n_coarse - 1);
+    }
+    return a;
+  };
+  const std::vector<Axis> ax = make_axis(W, cw, true), ay = make_axis(H, ch, false);
+  std::vector<char> lit(static_cast<std::size_t>(cw) * ch);
+  for (std::size_t i = 0; i < lit.size(); ++i) lit[i] = S.pixel_offset[i + 1] > S.pixel_offset[i];
+  // Back focal plane: lit where bfp_direction is (|f| ≤ 1 and |f|·NA_objective ≤ NA_condenser).
+  const bool bfp = bfp_view(scene);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
-    for (int y = r.begin(); y != r.end(); ++y)
+    for (int y = r.begin(); y != r.end(); ++y) {
+      const Axis& Y = ay[y];
       for (int x = 0; x < W; ++x) {
-        const glm::dvec2 f = field_from_pixel(W, H, x + 0.5, y + 0.5);
-        glm::dvec3 k;
-        if (!bfp_direction(scene, f, k)) continue;  // outside the lit disk: black
-        // The same field point on the coarse grid (pixel centres at i + 0.5).
-        const double gx = f.x * half_c + 0.5 * cw - 0.5, gy = 0.5 * ch - f.y * half_c - 0.5;
-        const int x0 = static_cast<int>(std::floor(gx)), y0 = static_cast<int>(std::floor(gy));
-        const double fx = gx - x0, fy = gy - y0;
-        double wsum = 0.0;
+        const Axis& X = ax[x];
+        const std::size_t i = 3 * (static_cast<std::size_t>(y) * W + x);
         float acc[6] = {0, 0, 0, 0, 0, 0};
-        int nx = std::clamp(static_cast<int>(std::lround(gx)), 0, cw - 1), ny = std::clamp(static_cast<int>(std::lround(gy)), 0, ch - 1);
-        for (int dy = 0; dy < 2; ++dy)
+        const double rho = std::sqrt(X.f * X.f + Y.f * Y.f);
+        if (bfp && (rho > 1.0 || rho * scene.objective.na > scene.condenser.na)) {  // unlit: black
+          for (int c3 = 0; c3 < 3; ++c3) img.rgb[i + c3] = img.xyz[i + c3] = 0.0f;
+          continue;
+        }
+        float wsum = 0.0f;
+        for (int dy = 0; dy < 2; ++dy) {
+          const int yy = Y.i0 + dy;
+          const float wy = dy ? Y.w1 : 1.0f - Y.w1;
+          if (yy < 0 || yy >= ch || wy <= 0.0f) continue;
           for (int dx = 0; dx < 2; ++dx) {
-            const int xx = x0 + dx, yy = y0 + dy;
-            if (xx < 0 || yy < 0 || xx >= cw || yy >= ch || !lit(xx, yy)) continue;  // only lit samples
-            const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
-            if (w <= 0) continue;
-            const std::size_t j = 3 * (static_cast<std::size_t>(yy) * cw + xx);
+            const int xx = X.i0 + dx;
+            const float w = wy * (dx ? X.w1 : 1.0f - X.w1);
+            if (xx < 0 || xx >= cw || w <= 0.0f) continue;
+            const std::size_t c = static_cast<std::size_t>(yy) * cw + xx;
+            if (!lit[c]) continue;  // only lit samples
             for (int c3 = 0; c3 < 3; ++c3) {
-              acc[c3] += static_cast<float>(w) * coarse.rgb[j + c3];
-              acc[3 + c3] += static_cast<float>(w) * coarse.xyz[j + c3];
+              acc[c3] += w * coarse.rgb[3 * c + c3];
+              acc[3 + c3] += w * coarse.xyz[3 * c + c3];
             }
             wsum += w;
           }
-        const std::size_t i = 3 * (static_cast<std::size_t>(y) * W + x);
-        if (wsum > 0) {
-          for (int c3 = 0; c3 < 6; ++c3) acc[c3] /= static_cast<float>(wsum);
+        }
+        if (wsum > 0.0f) {
+          for (float& v : acc) v /= wsum;
         } else {  // at the rim: the nearest coarse sample
-          const std::size_t j = 3 * (static_cast<std::size_t>(ny) * cw + nx);
+          const std::size_t j = 3 * (static_cast<std::size_t>(Y.nearest) * cw + X.nearest);
           for (int c3 = 0; c3 < 3; ++c3) {
             acc[c3] = coarse.rgb[j + c3];
             acc[3 + c3] = coarse.xyz[j + c3];
@@ -171,10 +211,11 @@ bool run_preview(const Scene& scene, const std::atomic<bool>& cancel, Clock::tim
           img.xyz[i + c3] = acc[3 + c3];
         }
       }
+    }
   });
   img.error_estimate = 100.0;
   img.wavelengths = level.n;
-  img.passes = 1;
+  img.passes = pass;
   img.generation = generation;
   img.samples_per_pixel = static_cast<double>(level.n) / (factor * factor);
   img.model_report = "preview: 1/" + std::to_string(factor) + " resolution, " + std::to_string(level.n) +
@@ -190,8 +231,11 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time
                 std::uint64_t generation, bool progressive, Publish&& publish) {
   int passes = 0;
   if (progressive && wants_preview(scene)) {
-    if (!run_preview(scene, cancel, t0, generation, publish)) return false;
-    passes = 1;
+    const int factor = preview_factor(scene);
+    for (const int f : {kGlanceFactor * factor, factor}) {
+      if (!run_preview(scene, f, passes + 1, cancel, t0, generation, publish)) return false;
+      ++passes;
+    }
   }
   auto setup = build_setup(scene, &cancel);
   if (!setup) return false;
@@ -216,19 +260,28 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time
                           stopped = true;
                           return;
                         }
-                        for (std::size_t j = r.begin(); j != r.end(); ++j)
+                        // Per unit as well: at thousands of bands a block of units takes
+                        // milliseconds, and a restart waits for the block in flight.
+                        for (std::size_t j = r.begin(); j != r.end(); ++j) {
+                          if (cancel.load(std::memory_order_relaxed)) {
+                            stopped = true;
+                            return;
+                          }
                           units[j * stride] = evaluate_unit(S, level, static_cast<int>(j * stride));
+                        }
                       });
     if (stopped || cancel) return false;
     double err = 100.0;
-    if (prev_stride > 0) err = unit_error(S, area, units, prev, std::max(prev_stride, n_units / 65536 + 1));
+    if (prev_stride > 0) err = unit_error(S, area, units, prev, std::max(prev_stride, n_units / 65536 + 1), cancel);
+    if (cancel) return false;
     if (one_level) err = 0.0;
     const bool converged = one_level || (prev_stride > 0 && err < scene.render.tolerance_de2000);
     const bool last = converged || bands >= kMaxBands;
     if (!partial) {
       ++passes;
       RenderImage img;
-      develop_image(S, units, level.monochromatic, img);
+      develop_image(S, units, level.monochromatic, img, &cancel);
+      if (cancel) return false;
       img.error_estimate = err;
       img.wavelengths = level.n;
       img.passes = passes;
