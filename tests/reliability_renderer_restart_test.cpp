@@ -129,7 +129,9 @@ void restart_storm(int restarts, bool report_memory) {
   }
   // Flat memory: after warm-up (caches and TBB pools filled) a restart must not keep anything.
   // 64 MiB of slack is far below what 10⁵ leaked images (≥ 1.5 KiB each) would need.
-  if (restarts >= 10000) EXPECT_LT(rss_end - rss_warm, 64 * 1024) << "memory grows with restarts";
+  if (restarts >= 10000) {
+    EXPECT_LT(rss_end - rss_warm, 64 * 1024) << "memory grows with restarts";
+  }
 }
 
 TEST(RendererRestart, RestartStormWhileSnapshottingShort) { restart_storm(300, true); }

@@ -23,6 +23,10 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
     pending_.emplace(scene, id);
     submitted_id_ = id;
   }
+  // The render in flight is for a scene the user has just left: stop it now, from this thread,
+  // so that its workers free the cores before the feed thread (which has to be scheduled first)
+  // restarts. A restart that this catches half-way is superseded by the pending scene anyway.
+  renderer_.interrupt();
   cv_.notify_all();
 }
 

@@ -113,7 +113,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
       row.p95_de2000 = e.p95_de2000;
       row.max_de2000 = e.max_de2000;
       row.wavelengths = r.wavelengths;
-      row.cpu_ms = cpu;
+      row.cpu_ms = r.cpu_ms >= 0.0 ? r.cpu_ms : cpu;
       row.code = st.product() ? "product" : "bench-side";
       row.renderer_estimate = r.error_estimate;
       row.model_report = r.model_report;

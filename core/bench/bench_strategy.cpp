@@ -1,6 +1,7 @@
 #include "core/bench/bench_strategy.h"
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <numbers>
 #include <thread>
@@ -113,11 +114,18 @@ StrategyResult run_first_pass(const Scene& scene, int threads) {
   renderer.restart(before);
   while (!renderer.snapshot(img)) std::this_thread::sleep_for(std::chrono::microseconds(100));
   const std::uint64_t warm_generation = img.generation;
+  const auto process_cpu_ms = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+  };
+  const double cpu0 = process_cpu_ms();
   const auto t0 = Clock::now();
   renderer.restart(scene);
   while (!renderer.snapshot(img) || img.generation == warm_generation)
     std::this_thread::sleep_for(std::chrono::microseconds(100));
   const double wall = ms_since(t0);
+  const double cpu = process_cpu_ms() - cpu0;
   renderer.cancel();
   StrategyResult r;
   r.time_ms = std::max(wall, img.time_ms);
@@ -125,6 +133,7 @@ StrategyResult run_first_pass(const Scene& scene, int threads) {
   r.wavelengths = img.wavelengths;
   r.error_estimate = img.error_estimate;
   r.model_report = img.model_report;
+  r.cpu_ms = cpu;
   return r;
 }
 

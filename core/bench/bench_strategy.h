@@ -34,6 +34,8 @@ struct StrategyResult {
   double time_ms = 0.0;          // wall time of the whole render (set-up included)
   int wavelengths = 0;           // spectral samples per unit (renderer: its band count)
   double error_estimate = -1.0;  // the renderer's own estimate (product strategies)
+  double cpu_ms = -1.0;          // ≥ 0: process CPU time of the measured part alone (the first
+                                 // pass excludes its warm-up); < 0: the caller measures it
   std::string model_report;
 };
 

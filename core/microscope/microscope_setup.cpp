@@ -330,12 +330,14 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     std::vector<glm::dvec3> k_px(static_cast<std::size_t>(W) * H);
     std::vector<char> lit_px(k_px.size());
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 16), [&](const tbb::blocked_range<int>& r) {
+      if (cancel && *cancel) return;
       for (int y = r.begin(); y != r.end(); ++y)
         for (int x = 0; x < W; ++x) {
           const std::size_t i = static_cast<std::size_t>(y) * W + x;
           lit_px[i] = bfp_direction(scene, field_from_pixel(W, H, x + 0.5, y + 0.5), k_px[i]);
         }
     });
+    if (cancel && *cancel) return nullptr;
     const std::size_t n_lit = static_cast<std::size_t>(std::count(lit_px.begin(), lit_px.end(), 1));
     S->units.reserve(S->units.size() + n_lit);
     S->refs.reserve(n_lit);
@@ -383,11 +385,13 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     if (section_map) {
       centre_domain.resize(static_cast<std::size_t>(W) * H);
       tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
+        if (cancel && *cancel) return;
         for (int y = r.begin(); y != r.end(); ++y)
           for (int x = 0; x < W; ++x)
             centre_domain[static_cast<std::size_t>(y) * W + x] = domain_at_sample(
                 to_sample(field_from_pixel(W, H, x + 0.5, y + 0.5)));
       });
+      if (cancel && *cancel) return nullptr;
     }
     auto interior = [&](int x, int y) {
       const int d = centre_domain[static_cast<std::size_t>(y) * W + x];

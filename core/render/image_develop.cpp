@@ -15,8 +15,9 @@ void develop_image(const MicroscopeSetup& S, const std::vector<glm::dvec3>& unit
   const int W = S.width(), H = S.height();
   out.width = W;
   out.height = H;
-  out.rgb.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
-  out.xyz.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
+  // Every pixel is written below: buffers handed in (a renderer recycles them) are not cleared.
+  out.rgb.resize(static_cast<std::size_t>(W) * H * 3);
+  out.xyz.resize(static_cast<std::size_t>(W) * H * 3);
   const glm::dvec3 white = illuminant_white_xyz(S.scene.illuminant);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;

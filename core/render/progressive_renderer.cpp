@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -27,6 +29,48 @@ namespace pmsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Image buffers handed back by the images a renderer replaces, for the next ones. A 512² image is
+// two 3 MB buffers; fresh ones cost ~3 ms of page faults and zero-filling on these machines,
+// which was half of a preview (a restart on every slider step makes a preview every frame).
+class BufferPool {
+ public:
+  // A buffer of exactly n floats, contents unspecified (every element is written by the caller).
+  std::vector<float> take(std::size_t n) {
+    std::vector<float> v;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      for (auto it = spare_.begin(); it != spare_.end(); ++it)
+        if (it->size() == n) {
+          v = std::move(*it);
+          spare_.erase(it);
+          break;
+        }
+    }
+    v.resize(n);  // no-op for a recycled buffer of that size
+    return v;
+  }
+  void give(std::vector<float>&& v) {
+    if (v.empty()) return;
+    std::lock_guard<std::mutex> lock(mu_);
+    if (spare_.size() < 6) spare_.push_back(std::move(v));
+  }
+
+ private:
+  std::mutex mu_;
+  std::vector<std::vector<float>> spare_;
+};
+
+// An image whose rgb and xyz buffers (w·h·3 floats each) come from the pool when there is one.
+RenderImage image_with_buffers(BufferPool* pool, int w, int h) {
+  RenderImage img;
+  img.width = w;
+  img.height = h;
+  const std::size_t n = static_cast<std::size_t>(w) * h * 3;
+  img.rgb = pool ? pool->take(n) : std::vector<float>(n);
+  img.xyz = pool ? pool->take(n) : std::vector<float>(n);
+  return img;
+}
 
 constexpr int kFirstBands = 8;      // first pass: 50 nm bands (a coarse preview)
 constexpr int kMaxBands = 4096;     // ~0.1 nm: beyond this a level costs more than it can change
@@ -108,7 +152,7 @@ bool wants_preview(const Scene& scene) {
 // Returns false when cancelled.
 template <class Publish>
 bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<bool>& cancel,
-                 Clock::time_point t0, std::uint64_t generation, Publish&& publish) {
+                 Clock::time_point t0, std::uint64_t generation, BufferPool* pool, Publish&& publish) {
   Scene c = scene;
   // Without the lens ghosts (internal reflections, optics.lens_depth ≥ 2): a fraction of a percent
   // of the light whose tracing dominated the physical lenses' preview (70–95 ms with, 15 without).
@@ -136,16 +180,12 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
   // row), so the coarse-grid position and bilinear weights are tabulated once per column and
   // row; the per-pixel work is the lit test and four weighted reads (the upsampling was over half
   // of the preview when every pixel recomputed its field point and direction).
-  RenderImage img;
-  img.width = W;
-  img.height = H;
-  img.rgb.resize(static_cast<std::size_t>(W) * H * 3);
-  img.xyz.resize(static_cast<std::size_t>(W) * H * 3);
+  RenderImage img = image_with_buffers(pool, W, H);
   struct Axis {
-    double f = 0.0;    // field coordinate of the pixel centre
-    int i0 = 0;        // coarse cell below (may be −1 or n − 1 at the rim)
-    float w1 = 0.0f;   // weight of cell i0 + 1
-    int nearest = 0;   // nearest coarse cell (clamped)
+    double f = 0.0, f2 = 0.0;  // field coordinate of the pixel centre, and its square
+    int c0 = 0, c1 = 0;        // the two coarse cells around it (clamped into the grid)
+    float w0 = 0.0f, w1 = 0.0f;  // their bilinear weights (0 for a cell outside the grid)
+    int nearest = 0;           // nearest coarse cell (clamped)
   };
   const double half_c = 0.5 * std::min(cw, ch);
   auto make_axis = [&](int n_full, int n_coarse, bool is_x) {
@@ -155,60 +195,69 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
       const double fc = is_x ? f.x : f.y;
       // The same field point on the coarse grid (pixel centres at i + 0.5; y grows downwards).
       const double g = is_x ? fc * half_c + 0.5 * n_coarse - 0.5 : 0.5 * n_coarse - fc * half_c - 0.5;
+      const int i0 = static_cast<int>(std::floor(g));
+      const float t = static_cast<float>(g - i0);
       a[i].f = fc;
-      a[i].i0 = static_cast<int>(std::floor(g));
-      a[i].w1 = static_cast<float>(g - a[i].i0);
+      a[i].f2 = fc * fc;
+      a[i].c0 = std::clamp(i0, 0, n_coarse - 1);
+      a[i].c1 = std::clamp(i0 + 1, 0, n_coarse - 1);
+      a[i].w0 = (i0 >= 0 && i0 < n_coarse) ? 1.0f - t : 0.0f;
+      a[i].w1 = (i0 + 1 >= 0 && i0 + 1 < n_coarse) ? t : 0.0f;
       a[i].nearest = std::clamp(static_cast<int>(std::lround(g)), 0, n_coarse - 1);
     }
     return a;
   };
   const std::vector<Axis> ax = make_axis(W, cw, true), ay = make_axis(H, ch, false);
-  std::vector<char> lit(static_cast<std::size_t>(cw) * ch);
-  for (std::size_t i = 0; i < lit.size(); ++i) lit[i] = S.pixel_offset[i + 1] > S.pixel_offset[i];
-  // Back focal plane: lit where bfp_direction is (|f| ≤ 1 and |f|·NA_objective ≤ NA_condenser).
+  // Coarse cells as 7 floats: rgb, xyz, lit (1 or 0).
+  std::vector<float> cell(static_cast<std::size_t>(cw) * ch * 7);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(cw) * ch; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      cell[7 * i + k] = coarse.rgb[3 * i + k];
+      cell[7 * i + 3 + k] = coarse.xyz[3 * i + k];
+    }
+    cell[7 * i + 6] = S.pixel_offset[i + 1] > S.pixel_offset[i] ? 1.0f : 0.0f;
+  }
+  // Back focal plane: lit where bfp_direction is (|f| ≤ 1 and |f|·NA_objective ≤ NA_condenser);
+  // surely lit well inside that radius.
   const bool bfp = bfp_view(scene);
+  const double rho_lit = std::min(1.0, scene.condenser.na / scene.objective.na);
+  const double lit_sure = 0.99 * rho_lit * rho_lit;
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y) {
       const Axis& Y = ay[y];
+      const float* row0 = cell.data() + 7 * static_cast<std::size_t>(Y.c0) * cw;
+      const float* row1 = cell.data() + 7 * static_cast<std::size_t>(Y.c1) * cw;
+      float* out_rgb = img.rgb.data() + 3 * static_cast<std::size_t>(y) * W;
+      float* out_xyz = img.xyz.data() + 3 * static_cast<std::size_t>(y) * W;
       for (int x = 0; x < W; ++x) {
         const Axis& X = ax[x];
-        const std::size_t i = 3 * (static_cast<std::size_t>(y) * W + x);
-        float acc[6] = {0, 0, 0, 0, 0, 0};
-        const double rho = std::sqrt(X.f * X.f + Y.f * Y.f);
-        if (bfp && (rho > 1.0 || rho * scene.objective.na > scene.condenser.na)) {  // unlit: black
-          for (int c3 = 0; c3 < 3; ++c3) img.rgb[i + c3] = img.xyz[i + c3] = 0.0f;
-          continue;
-        }
-        float wsum = 0.0f;
-        for (int dy = 0; dy < 2; ++dy) {
-          const int yy = Y.i0 + dy;
-          const float wy = dy ? Y.w1 : 1.0f - Y.w1;
-          if (yy < 0 || yy >= ch || wy <= 0.0f) continue;
-          for (int dx = 0; dx < 2; ++dx) {
-            const int xx = X.i0 + dx;
-            const float w = wy * (dx ? X.w1 : 1.0f - X.w1);
-            if (xx < 0 || xx >= cw || w <= 0.0f) continue;
-            const std::size_t c = static_cast<std::size_t>(yy) * cw + xx;
-            if (!lit[c]) continue;  // only lit samples
-            for (int c3 = 0; c3 < 3; ++c3) {
-              acc[c3] += w * coarse.rgb[3 * c + c3];
-              acc[3 + c3] += w * coarse.xyz[3 * c + c3];
+        if (bfp) {
+          // The test of bfp_direction, with the square root only near the rim.
+          const double s2 = X.f2 + Y.f2;
+          if (s2 > lit_sure) {
+            const double rho = std::sqrt(s2);
+            if (rho > 1.0 || rho * scene.objective.na > scene.condenser.na) {  // unlit: black
+              for (int c3 = 0; c3 < 3; ++c3) out_rgb[3 * x + c3] = out_xyz[3 * x + c3] = 0.0f;
+              continue;
             }
-            wsum += w;
           }
         }
+        // Four neighbours; out-of-grid ones have weight 0, unlit ones carry lit = 0.
+        const float* c[4] = {row0 + 7 * X.c0, row0 + 7 * X.c1, row1 + 7 * X.c0, row1 + 7 * X.c1};
+        const float w[4] = {Y.w0 * X.w0 * c[0][6], Y.w0 * X.w1 * c[1][6], Y.w1 * X.w0 * c[2][6],
+                            Y.w1 * X.w1 * c[3][6]};
+        const float wsum = w[0] + w[1] + w[2] + w[3];
+        float acc[6];
         if (wsum > 0.0f) {
-          for (float& v : acc) v /= wsum;
+          const float inv = 1.0f / wsum;
+          for (int k = 0; k < 6; ++k) acc[k] = (w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k] + w[3] * c[3][k]) * inv;
         } else {  // at the rim: the nearest coarse sample
-          const std::size_t j = 3 * (static_cast<std::size_t>(Y.nearest) * cw + X.nearest);
-          for (int c3 = 0; c3 < 3; ++c3) {
-            acc[c3] = coarse.rgb[j + c3];
-            acc[3 + c3] = coarse.xyz[j + c3];
-          }
+          const float* n = cell.data() + 7 * (static_cast<std::size_t>(Y.nearest) * cw + X.nearest);
+          for (int k = 0; k < 6; ++k) acc[k] = n[k];
         }
         for (int c3 = 0; c3 < 3; ++c3) {
-          img.rgb[i + c3] = acc[c3];
-          img.xyz[i + c3] = acc[3 + c3];
+          out_rgb[3 * x + c3] = acc[c3];
+          out_xyz[3 * x + c3] = acc[3 + c3];
         }
       }
     }
@@ -227,13 +276,13 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
 }
 
 template <class Publish>
-bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time_point t0,
+bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time_point t0, BufferPool* pool,
                 std::uint64_t generation, bool progressive, Publish&& publish) {
   int passes = 0;
   if (progressive && wants_preview(scene)) {
     const int factor = preview_factor(scene);
     for (const int f : {kGlanceFactor * factor, factor}) {
-      if (!run_preview(scene, f, passes + 1, cancel, t0, generation, publish)) return false;
+      if (!run_preview(scene, f, passes + 1, cancel, t0, generation, pool, publish)) return false;
       ++passes;
     }
   }
@@ -279,7 +328,7 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time
     const bool last = converged || bands >= kMaxBands;
     if (!partial) {
       ++passes;
-      RenderImage img;
+      RenderImage img = image_with_buffers(pool, S.width(), S.height());
       develop_image(S, units, level.monochromatic, img, &cancel);
       if (cancel) return false;
       img.error_estimate = err;
@@ -302,20 +351,29 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, Clock::time
 
 }  // namespace
 
+// Each restart gets its own worker thread and cancel flag. A restart cancels the worker in flight
+// and joins it before the new one starts: two renders in one TBB arena at once would make TBB's
+// own (uninstrumented) task recycling race in ThreadSanitizer's eyes, and the set-up polls its
+// flag often enough (every pixel row, unit block, ghost row and develop row) that the join is
+// short. interrupt() raises the flag from any thread without waiting.
 struct ProgressiveRenderer::Impl {
   int threads = 0;
   std::unique_ptr<tbb::task_arena> arena;
+  BufferPool pool;
   std::thread worker;
-  std::atomic<bool> cancel{false};
-  mutable std::mutex mu;
+  mutable std::mutex mu;  // the state below
   mutable std::condition_variable cv;
+  std::shared_ptr<std::atomic<bool>> current_cancel;  // the flag of `worker`
   RenderImage latest;
   bool have_image = false;
   bool running = false;
   std::uint64_t generation = 0;
 
   void stop() {
-    cancel = true;
+    {
+      std::lock_guard<std::mutex> lock(mu);
+      if (current_cancel) current_cancel->store(true);
+    }
     if (worker.joinable()) worker.join();
     std::lock_guard<std::mutex> lock(mu);
     running = false;
@@ -332,22 +390,25 @@ ProgressiveRenderer::~ProgressiveRenderer() { impl_->stop(); }
 
 void ProgressiveRenderer::restart(const Scene& scene) {
   check_scene(scene);  // throws before anything stops: the previous scene keeps rendering
-  impl_->stop();
+  Impl* im = impl_.get();
+  im->stop();
+  auto cancel = std::make_shared<std::atomic<bool>>(false);
   std::uint64_t gen;
   {
-    std::lock_guard<std::mutex> lock(impl_->mu);
-    gen = ++impl_->generation;
-    impl_->running = true;
+    std::lock_guard<std::mutex> lock(im->mu);
+    gen = ++im->generation;
+    im->running = true;
+    im->current_cancel = cancel;
   }
-  impl_->cancel = false;
-  Impl* im = impl_.get();
-  im->worker = std::thread([im, scene, gen] {
+  im->worker = std::thread([im, scene, gen, cancel] {
     const auto t0 = Clock::now();
     im->arena->execute([&] {
       try {
-        run_render(scene, im->cancel, t0, gen, true, [&](RenderImage&& img, bool last) {
+        run_render(scene, *cancel, t0, &im->pool, gen, true, [&](RenderImage&& img, bool last) {
           std::lock_guard<std::mutex> lock(im->mu);
-          im->latest = std::move(img);
+          std::swap(im->latest, img);
+          im->pool.give(std::move(img.rgb));  // the replaced image's buffers
+          im->pool.give(std::move(img.xyz));
           im->have_image = true;
           if (last) im->running = false;
           im->cv.notify_all();
@@ -364,6 +425,11 @@ void ProgressiveRenderer::restart(const Scene& scene) {
 }
 
 void ProgressiveRenderer::cancel() { impl_->stop(); }
+
+void ProgressiveRenderer::interrupt() {
+  std::lock_guard<std::mutex> lock(impl_->mu);
+  if (impl_->current_cancel) impl_->current_cancel->store(true);
+}
 
 bool ProgressiveRenderer::snapshot(RenderImage& out) const {
   std::lock_guard<std::mutex> lock(impl_->mu);
@@ -397,7 +463,7 @@ RenderImage ProgressiveRenderer::render(const Scene& scene, int threads,
   RenderImage result;
   tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
   arena.execute([&] {
-    run_render(scene, never, Clock::now(), 0, false, [&](RenderImage&& img, bool) {
+    run_render(scene, never, Clock::now(), nullptr, 0, false, [&](RenderImage&& img, bool) {
       if (progress) progress(img);
       result = std::move(img);
     });

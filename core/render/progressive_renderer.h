@@ -39,6 +39,10 @@ class ProgressiveRenderer {
   // scene is invalid (and then keeps rendering the previous one).
   void restart(const Scene& scene);
   void cancel();                          // stops work; snapshot() keeps the last image
+  // Asks the work in flight to stop and returns at once (thread-safe, never blocks): a UI calls
+  // it the moment a control moves, so the cores are free before restart() (on another thread)
+  // takes the new scene. Harmless if nothing runs; restart() clears it for the new work.
+  void interrupt();
 
   // Copies the latest developed image into `out`; returns false if nothing new since `generation`
   // and `passes` of `out` (so a UI uploads a texture only when something changed).
