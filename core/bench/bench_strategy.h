@@ -15,6 +15,7 @@ namespace pmsim {
 enum class StrategyKind {
   Product,        // ProgressiveRenderer::render of the scene with `settings` applied
   FirstPass,      // the first progressive pass of ProgressiveRenderer (interactive preview)
+  SecondPass,     // its second pass (for a large field: the 1/4-resolution preview after the glance)
   Rgb,            // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
   Stratified,     // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
   Hero,           // bench-side: hero wavelength + n−1 equally spaced companions, per unit
@@ -26,7 +27,9 @@ struct BenchStrategy {
   StrategyKind kind = StrategyKind::Product;
   std::vector<std::string> settings;  // "key=value" applied to the scene first
   int wavelengths = 0;                // bench-side sample count
-  bool product() const { return kind == StrategyKind::Product || kind == StrategyKind::FirstPass; }
+  bool product() const {
+    return kind == StrategyKind::Product || kind == StrategyKind::FirstPass || kind == StrategyKind::SecondPass;
+  }
 };
 
 struct StrategyResult {

@@ -63,7 +63,7 @@ constexpr Family kFamilies[] = {
     {"uniform", "uniform (exact, n bands)", {31, 119, 180}}, {"rgb", "RGB 3 wavelengths", {214, 39, 40}},
     {"stratified", "stratified per pixel", {255, 127, 14}}, {"hero", "hero wavelength", {148, 103, 189}},
     {"modal", "modal fit, n bands", {44, 160, 44}},         {"auto", "renderer auto (converged)", {0, 0, 0}},
-    {"first-pass", "first progressive pass", {140, 86, 75}}, {"reference", "reference, half samples", {127, 127, 127}},
+    {"first-pass", "first progressive pass", {140, 86, 75}}, {"second-pass", "second progressive pass", {196, 156, 148}}, {"reference", "reference, half samples", {127, 127, 127}},
     {"ideal", "ideal lenses", {23, 190, 207}},              {"sml", "bench SML lenses dT / Schlick", {188, 189, 34}},
     {"renderer-", "renderer physical lenses", {227, 119, 194}},
 };
