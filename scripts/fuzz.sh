@@ -68,7 +68,13 @@ for t in "${targets[@]}"; do
     fi
   fi
   [ -n "${PMSIM_FUZZ_RUNS:-}" ] && seed_opt+=(-runs="$PMSIM_FUZZ_RUNS")
-  export PMSIM_FUZZ_SCRATCH="$TMPDIR/$t"
+  # Repeatable runs use one scratch path on every machine: the parsers walk it, and libFuzzer
+  # counts loop iterations as coverage, so a deeper checkout folder would steer the run.
+  if [ -n "${PMSIM_FUZZ_SEED:-}" ]; then
+    export PMSIM_FUZZ_SCRATCH="/tmp/pmsim-fuzz-scratch/$t"
+  else
+    export PMSIM_FUZZ_SCRATCH="$TMPDIR/$t"
+  fi
   mkdir -p "$PMSIM_FUZZ_SCRATCH"
   "${launcher[@]}" "$build/tests/fuzz/fuzz_$t" "$corpus" -seed_inputs=@"$build/seed_list_$t.txt" "${seed_opt[@]}" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
