@@ -505,8 +505,8 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     // A conoscopic figure of a uniaxial plate cut ⟂ its optic axis: a radial table of fits.
     RadialModalTable radial;
     bool use_radial = false;
-    // The table costs kEntries fits (single-threaded); the direct way one fit per unit over the
-    // cores: the table wins from about twice as many units (a 64² preview has ~3 200).
+    // The table costs kEntries fits plus its checks; the direct way one fit per unit: the table
+    // wins from about twice as many units (a 64² glance of a figure has ~3 200).
     if (cono && scene.bertrand_in && S->units.size() > 2 * RadialModalTable::kEntries) {
       const int dom = S->units.front().domain;
       const OpticalDomain& D0 = S->domains[dom];

@@ -127,8 +127,9 @@ constexpr long long kPreviewMinPixels = 256LL * 256LL;
 constexpr int kPreviewFactorBiaxial = 8;
 
 // Before that preview, a glance twice as coarse again (1/8, biaxial 1/16 each way: 64² for a 512²
-// field): 4× less work, so that with a UI drawing frames on the same two cores the first image
-// of a change is on screen a frame after it; the 1/4 preview follows a few milliseconds later.
+// field): 4× less work, so the first image of a change comes 4–10 ms after it on two idle cores
+// (in the UI, whose software-GL frames share those cores, in the second frame after the change);
+// the 1/4 preview follows a few milliseconds later.
 constexpr int kGlanceFactor = 2;
 
 int preview_factor(const Scene& scene) {
