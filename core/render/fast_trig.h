@@ -8,19 +8,28 @@
 
 namespace pmsim {
 
-inline void fast_sincos(double x, double& s, double& c) {
-  constexpr double two_over_pi = 0.63661977236758134308;
-  constexpr double pio2_hi = 1.5707963267341256;        // first 33 bits of π/2
-  constexpr double pio2_lo = 6.077100506506192e-11;      // π/2 − pio2_hi
-  const double k = std::nearbyint(x * two_over_pi);
-  const double r = (x - k * pio2_hi) - k * pio2_lo;
-  const double r2 = r * r;
-  const double sr =
-      r * (1.0 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+// The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the two-lane
+// version in spectral_level.cpp.
+constexpr double kTwoOverPi = 0.63661977236758134308;
+constexpr double kPio2Hi = 1.5707963267341256;      // first 33 bits of π/2
+constexpr double kPio2Lo = 6.077100506506192e-11;   // π/2 − kPio2Hi
+
+// Taylor polynomials of sin and cos on the reduced argument |r| ≤ π/4 (truncation < 4e-13), for a
+// double or a vector of doubles (GCC/Clang vector extensions).
+template <class T>
+inline void sincos_taylor(T r, T& sr, T& cr) {
+  const T r2 = r * r;
+  sr = r * (1.0 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
            r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0)))))));
-  const double cr =
-      1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
+  cr = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
            r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0)))))));
+}
+
+inline void fast_sincos(double x, double& s, double& c) {
+  const double k = std::nearbyint(x * kTwoOverPi);
+  const double r = (x - k * kPio2Hi) - k * kPio2Lo;
+  double sr, cr;
+  sincos_taylor(r, sr, cr);
   const std::int64_t q = static_cast<std::int64_t>(k) & 3;
   switch (q) {
     case 0: s = sr; c = cr; break;

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/render/band_integral.h"
+#include "core/render/fast_trig.h"
 #include "core/spectrum/cie.h"
 
 namespace pmsim {
@@ -129,15 +130,10 @@ inline v2d vabs(v2d x) { return select(x < splat(0.0), -x, x); }
 // them.
 inline void sincos2(v2d x, v2d& s, v2d& c) {
   const v2d magic = splat(6755399441055744.0);  // 1.5·2⁵²
-  const v2d k = (x * splat(0.63661977236758134308) + magic) - magic;
-  const v2d r = (x - k * splat(1.5707963267341256)) - k * splat(6.077100506506192e-11);
-  const v2d r2 = r * r;
-  const v2d sr =
-      r * (1.0 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
-           r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0)))))));
-  const v2d cr =
-      1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
-           r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0)))))));
+  const v2d k = (x * splat(kTwoOverPi) + magic) - magic;
+  const v2d r = (x - k * splat(kPio2Hi)) - k * splat(kPio2Lo);
+  v2d sr, cr;
+  sincos_taylor(r, sr, cr);
   const v2d k4 = (k * 0.25 + magic) - magic;
   const v2d q0 = k - 4.0 * k4;                          // −2 … 2, ≡ k mod 4
   const v2d q = select(q0 < splat(0.0), q0 + 4.0, q0);  // 0 … 3
