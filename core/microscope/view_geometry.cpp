@@ -21,9 +21,8 @@ glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg) { return Sta
 
 bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air) {
   const double rho = std::sqrt(f.x * f.x + f.y * f.y);  // field coordinates are O(1)
-  if (rho > 1.0) return false;
+  if (!bfp_lit(scene, rho)) return false;
   const double sin_t = rho * scene.objective.na;
-  if (sin_t > scene.condenser.na) return false;
   const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t));
   if (rho > 0) {
     k_air = {sin_t * f.x / rho, sin_t * f.y / rho, cos_t};

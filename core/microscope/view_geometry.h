@@ -24,6 +24,10 @@ struct StageToSample {
 // point f: sin θ_air = |f|·objective.na, azimuth of f. False outside the disk or beyond the
 // condenser NA (unlit).
 bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air);
+// Its lit test alone, for a back-focal-plane point at distance rho = |f| from the centre.
+inline bool bfp_lit(const Scene& scene, double rho) {
+  return !(rho > 1.0) && !(rho * scene.objective.na > scene.condenser.na);
+}
 
 // Half-width of the field in field units along x (≥ 1).
 double field_half_width(int width, int height);

@@ -183,7 +183,7 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
   // of the preview when every pixel recomputed its field point and direction).
   RenderImage img = image_with_buffers(pool, W, H);
   struct Axis {
-    double f = 0.0, f2 = 0.0;  // field coordinate of the pixel centre, and its square
+    double f2 = 0.0;           // square of the field coordinate of the pixel centre
     int c0 = 0, c1 = 0;        // the two coarse cells around it (clamped into the grid)
     float w0 = 0.0f, w1 = 0.0f;  // their bilinear weights (0 for a cell outside the grid)
     int nearest = 0;           // nearest coarse cell (clamped)
@@ -198,7 +198,6 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
       const double g = is_x ? fc * half_c + 0.5 * n_coarse - 0.5 : 0.5 * n_coarse - fc * half_c - 0.5;
       const int i0 = static_cast<int>(std::floor(g));
       const float t = static_cast<float>(g - i0);
-      a[i].f = fc;
       a[i].f2 = fc * fc;
       a[i].c0 = std::clamp(i0, 0, n_coarse - 1);
       a[i].c1 = std::clamp(i0 + 1, 0, n_coarse - 1);
@@ -236,8 +235,7 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
           // The test of bfp_direction, with the square root only near the rim.
           const double s2 = X.f2 + Y.f2;
           if (s2 > lit_sure) {
-            const double rho = std::sqrt(s2);
-            if (rho > 1.0 || rho * scene.objective.na > scene.condenser.na) {  // unlit: black
+            if (!bfp_lit(scene, std::sqrt(s2))) {  // unlit: black
               for (int c3 = 0; c3 < 3; ++c3) out_rgb[3 * x + c3] = out_xyz[3 * x + c3] = 0.0f;
               continue;
             }
