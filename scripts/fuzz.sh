@@ -55,8 +55,11 @@ for t in "${targets[@]}"; do
   # Address-space randomisation is off too, and so is libFuzzer's use of compared values in its
   # mutations (-use_cmp=0): pointers are among those values, and heap addresses differ from run to
   # run even without ASLR, so two runs of one seed diverged after a few hundred inputs.
+  # Repeatable runs also use one scratch path on every machine: the parsers walk it, and libFuzzer
+  # counts loop iterations as coverage, so a deeper checkout folder would steer the run.
   seed_opt=()
   launcher=()
+  export PMSIM_FUZZ_SCRATCH="$TMPDIR/$t"
   if [ -n "${PMSIM_FUZZ_SEED:-}" ]; then
     rm -rf "$corpus"
     mkdir -p "$corpus"
@@ -66,15 +69,9 @@ for t in "${targets[@]}"; do
     else
       echo "fuzz: setarch -R is not permitted here; runs may differ between machines" >&2
     fi
+    PMSIM_FUZZ_SCRATCH="/tmp/pmsim-fuzz-scratch/$t"
   fi
   [ -n "${PMSIM_FUZZ_RUNS:-}" ] && seed_opt+=(-runs="$PMSIM_FUZZ_RUNS")
-  # Repeatable runs use one scratch path on every machine: the parsers walk it, and libFuzzer
-  # counts loop iterations as coverage, so a deeper checkout folder would steer the run.
-  if [ -n "${PMSIM_FUZZ_SEED:-}" ]; then
-    export PMSIM_FUZZ_SCRATCH="/tmp/pmsim-fuzz-scratch/$t"
-  else
-    export PMSIM_FUZZ_SCRATCH="$TMPDIR/$t"
-  fi
   mkdir -p "$PMSIM_FUZZ_SCRATCH"
   "${launcher[@]}" "$build/tests/fuzz/fuzz_$t" "$corpus" -seed_inputs=@"$build/seed_list_$t.txt" "${seed_opt[@]}" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \

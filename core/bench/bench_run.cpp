@@ -10,7 +10,6 @@
 #include <sstream>
 #include <thread>
 
-#include <sys/resource.h>
 
 #include "core/bench/bench_scenes.h"
 #include "core/bench/bench_strategy.h"
@@ -35,12 +34,6 @@ const BenchRow* find_row(const BenchReport& r, const std::string& scene, const s
   for (const BenchRow& row : r.rows)
     if (row.scene == scene && row.strategy == strategy) return &row;
   return nullptr;
-}
-
-double cpu_ms_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
 }
 
 void save_png(const std::string& dir, const std::string& name, int w, int h, const std::vector<float>& xyz) {
@@ -99,9 +92,9 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
     }
     for (const BenchStrategy& st : bench_strategies(bs, opt.quick)) {
       if (!opt.strategy_filter.empty() && st.name.find(opt.strategy_filter) == std::string::npos) continue;
-      const double cpu0 = cpu_ms_now();
+      const double cpu0 = process_cpu_ms();
       const StrategyResult r = run_strategy(bs.scene, st, opt.threads);
-      const double cpu = cpu_ms_now() - cpu0;
+      const double cpu = process_cpu_ms() - cpu0;
       const ImageError e = image_error_de2000(r.xyz, ref.xyz, ref.lit, white);
       BenchRow row;
       row.scene = bs.name;

@@ -1,10 +1,11 @@
 #include "core/bench/bench_strategy.h"
 
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <numbers>
 #include <thread>
+
+#include <sys/resource.h>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -114,11 +115,6 @@ StrategyResult run_pass(const Scene& scene, int threads, int min_pass) {
   renderer.restart(before);
   while (!renderer.snapshot(img)) std::this_thread::sleep_for(std::chrono::microseconds(100));
   const std::uint64_t warm_generation = img.generation;
-  const auto process_cpu_ms = [] {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-  };
   const double cpu0 = process_cpu_ms();
   const auto t0 = Clock::now();
   renderer.restart(scene);
@@ -138,6 +134,12 @@ StrategyResult run_pass(const Scene& scene, int threads, int min_pass) {
 }
 
 }  // namespace
+
+double process_cpu_ms() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
+}
 
 std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
   std::vector<BenchStrategy> v;

@@ -45,6 +45,9 @@ struct StrategyResult {
 // quick: fewer strategies. Strategies that do not apply to a scene are left out.
 std::vector<BenchStrategy> bench_strategies(const BenchScene& scene, bool quick);
 
+// CPU time of this process so far (all threads, user + system), ms: what the rows' cpu_ms count.
+double process_cpu_ms();
+
 // threads: 0 = all cores. Throws InputError if a setting is rejected.
 StrategyResult run_strategy(const Scene& scene, const BenchStrategy& strategy, int threads);
 
