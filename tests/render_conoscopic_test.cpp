@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/render/progressive_renderer.h"
+#include "tests/asset_scene.h"
 
 using namespace pmsim;
 
@@ -187,11 +188,9 @@ TEST(ConoscopicBiaxial, AcuteBisectrixCrossOpensIntoHyperbolaeAt45Degrees) {
 }
 
 TEST(ConoscopicStability, RayAlongTheOpticAxisAndGrazingConeStayFinite) {
-  Scene s = cono_scene();
+  Scene s = asset_scene("calcite_cono.json");  // calcite 1 mm ⟂ c
+  s.optics.lens_model = LensModel::Ideal;
   s.render.width = s.render.height = 65;  // odd: one pixel exactly on the axis
-  s.sample.mineral = "calcite";
-  s.sample.optic_axis = {0, 0, 1};
-  s.sample.thickness_um = 1000.0;
   s.objective.na = 0.99;
   s.condenser.na = 0.99;
   const RenderImage img = ProgressiveRenderer::render(s, 2);

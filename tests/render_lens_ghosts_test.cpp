@@ -16,20 +16,15 @@
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "tests/asset_scene.h"
 
 using namespace pmsim;
 
 namespace {
 
+// The calcite 1 mm ⟂ c conoscopic figure (NA 0.85, condenser 0.9) through SML lenses of depth dT.
 Scene cono_scene(int depth) {
-  Scene s;
-  s.mode = ViewMode::Cono;
-  s.bertrand_in = true;
-  s.objective.na = 0.85;
-  s.condenser.na = 0.9;
-  s.sample.mineral = "calcite";
-  s.sample.optic_axis = {0, 0, 1};
-  s.sample.thickness_um = 1000;
+  Scene s = asset_scene("calcite_cono.json");
   s.render.width = s.render.height = 96;
   s.render.wavelengths = 16;
   s.optics.lens_model = LensModel::Physical;

@@ -12,18 +12,14 @@
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "tests/asset_scene.h"
 
 using namespace pmsim;
 
 namespace {
+// The calcite 1 mm ⟂ c conoscopic figure at NA 0.85, `size` pixels square.
 Scene figure(int size) {
-  Scene s;
-  s.mode = ViewMode::Cono;
-  s.bertrand_in = true;
-  s.sample.mineral = "calcite";
-  s.sample.optic_axis = {0, 0, 1};
-  s.sample.thickness_um = 1000;
-  s.objective.na = 0.85;
+  Scene s = asset_scene("calcite_cono.json");
   s.render.width = s.render.height = size;
   return s;
 }

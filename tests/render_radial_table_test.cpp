@@ -13,22 +13,16 @@
 #include "core/render/spectral_level.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "tests/asset_scene.h"
 
 using namespace pmsim;
 
 namespace {
 
 Scene calcite_figure(int size, double stage_deg) {
-  Scene s;
-  s.mode = ViewMode::Cono;
-  s.bertrand_in = true;
-  s.objective.na = 0.85;
-  s.condenser.na = 0.9;
+  Scene s = asset_scene("calcite_cono.json");  // calcite 1 mm ⟂ c, NA 0.85, condenser 0.9
   s.render.width = s.render.height = size;
   s.optics.lens_model = LensModel::Ideal;
-  s.sample.mineral = "calcite";
-  s.sample.thickness_um = 1000.0;
-  s.sample.optic_axis = {0, 0, 1};
   s.stage_deg = stage_deg;
   return s;
 }

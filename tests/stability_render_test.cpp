@@ -10,6 +10,7 @@
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "tests/asset_scene.h"
 
 namespace pmsim {
 namespace {
@@ -47,12 +48,11 @@ Stats stats(const RenderImage& img, Illuminant illum) {
 TEST(StabilityRender, HardScenesGiveFiniteBoundedImages) {
   std::vector<std::pair<const char*, Scene>> scenes;
   {
-    Scene s = small(ViewMode::Cono);
+    Scene s = asset_scene("calcite_cono.json");  // calcite 1 mm ⟂ c
+    s.render.width = s.render.height = 24;
+    s.optics.lens_model = LensModel::Ideal;
     s.objective.na = 0.99;
     s.condenser.na = 0.99;
-    s.sample.mineral = "calcite";
-    s.sample.thickness_um = 1000.0;
-    s.sample.optic_axis = {0, 0, 1};
     scenes.push_back({"calcite cone to NA 0.99", s});
   }
   {

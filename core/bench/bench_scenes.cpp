@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/io/scene_file.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {
@@ -61,13 +62,13 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
   cono.bertrand_in = true;
   cono.objective.na = 0.85;
   cono.condenser.na = 0.9;
-  {  // Calcite 1 mm ⟂ c: the uniaxial cross with many dense isochromes (Γ ≈ 0.17 mm at the edge).
-    Scene s = cono;
-    s.sample.mineral = "calcite";
-    s.sample.thickness_um = 1000.0;
-    s.sample.optic_axis = {0, 0, 1};
-    out.push_back({"calcite-1mm-cono", "calcite 1 mm ⟂ c, conoscopic, NA 0.85", s, true, false});
-  }
+  // Calcite 1 mm ⟂ c at NA 0.85 (condenser 0.9), the shipped scene, with the bench's size and
+  // ideal lenses like every other bench scene.
+  Scene calcite = load_scene_file((std::filesystem::path(asset_dir()) / "scenes" / "calcite_cono.json").string());
+  calcite.render.width = calcite.render.height = size;
+  calcite.optics.lens_model = LensModel::Ideal;
+  // The uniaxial cross with many dense isochromes (Γ ≈ 0.17 mm at the edge).
+  out.push_back({"calcite-1mm-cono", "calcite 1 mm ⟂ c, conoscopic, NA 0.85", calcite, true, false});
   {  // Biaxial acute-bisectrix figure: muscovite (optically negative, so Bxa = X) with X along the
      // microscope axis and the optic-axial plane (X, Z) east–west, stage at 45° (hyperbolae).
     Scene s = cono;
@@ -80,10 +81,7 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
                    false});
   }
   {  // The calcite figure with the physical (SML) condenser, objective and Bertrand lens.
-    Scene s = cono;
-    s.sample.mineral = "calcite";
-    s.sample.thickness_um = 1000.0;
-    s.sample.optic_axis = {0, 0, 1};
+    Scene s = calcite;
     s.optics.lens_model = LensModel::Physical;
     s.optics.lens_depth = 3;
     out.push_back({"calcite-1mm-cono-physical", "calcite 1 mm ⟂ c, SML lenses with internal reflections (dT = 3)",
