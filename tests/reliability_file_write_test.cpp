@@ -11,6 +11,7 @@
 #include <sys/mount.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -160,19 +161,18 @@ class FullDisk : public ::testing::Test {
 
 void FullDisk::check_write_fails_cleanly(const std::string& kind) {
   std::cerr << (mounted_ ? "full disk: 64 KiB tmpfs, filled\n" : "full disk: RLIMIT_FSIZE 8 bytes\n");
-  for (const auto& entry : writers(4096, 64)) {
-    const std::string& k = entry.first;
-    const auto& write = entry.second;
-    if (k != kind) continue;
-    const std::string target = (dir_ / ("saved." + ext_for(kind))).string();
-    { std::ofstream(target) << "the user's previous file"; }
-    fill();
-    expect_write_error([&] { write(target); }, target);
-    unfill();
-    EXPECT_TRUE(read_file(target) == "the user's previous file")
-        << "the old file was replaced by " << fs::file_size(target) << " bytes";
-    EXPECT_EQ(listing(dir_), std::vector<std::string>{"saved." + ext_for(kind)}) << "a temporary was left behind";
-  }
+  const auto all = writers(4096, 64);
+  const auto entry = std::find_if(all.begin(), all.end(), [&](const auto& e) { return e.first == kind; });
+  ASSERT_NE(entry, all.end()) << "no writer of kind " << kind;
+  const auto& write = entry->second;
+  const std::string target = (dir_ / ("saved." + ext_for(kind))).string();
+  { std::ofstream(target) << "the user's previous file"; }
+  fill();
+  expect_write_error([&] { write(target); }, target);
+  unfill();
+  EXPECT_TRUE(read_file(target) == "the user's previous file")
+      << "the old file was replaced by " << fs::file_size(target) << " bytes";
+  EXPECT_EQ(listing(dir_), std::vector<std::string>{"saved." + ext_for(kind)}) << "a temporary was left behind";
 }
 
 TEST_F(FullDisk, ATextWriteFailsAndKeepsTheOldFile) { check_write_fails_cleanly("text"); }
