@@ -15,6 +15,8 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "core/io/input_error.h"
 #include "core/render/progressive_renderer.h"
@@ -75,16 +77,45 @@ void expect_consistent(const RenderImage& img) {
 void restart_storm(int restarts, bool report_memory) {
   ProgressiveRenderer renderer(render_threads());
   std::mt19937 rng(7);
+  // Every scene of the storm, drawn before it starts, so that the display thread knows the size
+  // of the image each generation must have: generation g is the g-th accepted restart.
+  std::vector<Scene> scenes;
+  std::vector<std::pair<int, int>> size_of_generation{{0, 0}};  // [0]: before any restart
+  for (int i = 0; i < restarts; ++i) {
+    scenes.push_back(random_scene(rng));
+    if (i % 97 == 13)
+      scenes.back().objective.na = 1.5;  // invalid: must throw and keep the previous scene rendering
+    else
+      size_of_generation.push_back({scenes.back().render.width, scenes.back().render.height});
+  }
+  // The last scene must still render to the end after the storm.
+  Scene last = random_scene(rng);
+  last.render.wavelengths = 8;
+  size_of_generation.push_back({last.render.width, last.render.height});
+
   std::atomic<bool> done{false};
-  std::atomic<long> snapshots{0};
-  // The display thread: snapshots as fast as a UI would upload textures.
+  std::atomic<long> snapshots{0}, stale{0}, wrong_size{0};
+  // The display thread: snapshots as fast as a UI would upload textures. A snapshot is new by
+  // contract, so (generation, passes) must strictly increase from one to the next: an image of an
+  // older generation, or an older pass of the same one, after a newer one would be stale work
+  // published after its restart.
   std::thread display([&] {
     RenderImage img;
-    while (!done.load()) {
+    std::uint64_t generation = 0;
+    int passes = 0;
+    for (;;) {
+      const bool last_round = done.load();  // one more snapshot after the final render: its image
       if (renderer.snapshot(img)) {
         expect_consistent(img);
         ++snapshots;
+        if (img.generation < generation || (img.generation == generation && img.passes <= passes)) ++stale;
+        generation = img.generation;
+        passes = img.passes;
+        if (img.generation >= size_of_generation.size() ||
+            std::pair{img.width, img.height} != size_of_generation[img.generation])
+          ++wrong_size;
       }
+      if (last_round) break;
       std::this_thread::yield();
     }
   });
@@ -94,33 +125,41 @@ void restart_storm(int restarts, bool report_memory) {
   for (int i = 0; i < restarts; ++i) {
     if (i == std::min(1000, restarts / 10)) rss_warm = status_kib("VmRSS");
     if (i % 97 == 13) {
-      Scene bad = random_scene(rng);
-      bad.objective.na = 1.5;  // invalid: must throw and keep the previous scene rendering
       try {
-        renderer.restart(bad);
+        renderer.restart(scenes[i]);
         ADD_FAILURE() << "an invalid scene was accepted";
       } catch (const InputError&) {
         ++rejected;
       }
       continue;
     }
-    renderer.restart(random_scene(rng));
+    renderer.restart(scenes[i]);
     if (i % 50 == 0) renderer.wait(0.002);  // let some renders finish passes
     if (i % 211 == 0) renderer.cancel();
   }
-  // The last scene must still render to the end after the storm.
-  Scene last = random_scene(rng);
-  last.render.wavelengths = 8;
   renderer.restart(last);
   EXPECT_TRUE(renderer.wait(120.0)) << "the final render did not finish";
   done = true;
   display.join();
+  EXPECT_GT(snapshots.load(), 0) << "the display thread never saw an image";
+  EXPECT_EQ(stale.load(), 0) << "snapshots went back in generation or pass";
+  EXPECT_EQ(wrong_size.load(), 0) << "a snapshot's size is not its generation's scene's";
   RenderImage img;
   ASSERT_TRUE(renderer.snapshot(img));
   expect_consistent(img);
   EXPECT_EQ(img.width, last.render.width);
   EXPECT_EQ(img.height, last.render.height);
-  EXPECT_GT(rejected, 0);
+  EXPECT_TRUE(img.converged);
+  // Every accepted restart bumped the generation once; the rejected ones did not.
+  EXPECT_EQ(img.generation, std::uint64_t(restarts - rejected + 1));
+  EXPECT_EQ(rejected, (restarts + 83) / 97);  // i = 13, 110, 207, …
+  // Nothing of the storm leaks into the last image: it is the image a fresh renderer makes of
+  // that scene. The accumulation is deterministic (fixed bands, per-pixel sums in a fixed order,
+  // the property tests/regression_golden_test relies on), so the comparison is exact.
+  const RenderImage fresh = ProgressiveRenderer::render(last, render_threads());
+  EXPECT_EQ(img.passes, fresh.passes);
+  EXPECT_EQ(img.wavelengths, fresh.wavelengths);
+  EXPECT_TRUE(img.xyz == fresh.xyz) << "the last image differs from a fresh render of its scene";
   const long rss_end = status_kib("VmRSS");
   if (report_memory) {
     std::printf("restarts %d, snapshots %ld, rejected %d\n", restarts, snapshots.load(), rejected);
