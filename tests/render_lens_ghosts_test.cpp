@@ -92,10 +92,17 @@ TEST(LensGhosts, GhostsChangeTheFigureSlightlyAndNeverAddEnergy) {
   const double de12 = mean_de(d1, d2), de13 = mean_de(d1, d3), de23 = mean_de(d2, d3);
   std::printf("mean CIEDE2000: dT 1→2 %.4f, 1→3 %.4f, 2→3 %.4f\n", de12, de13, de23);
   // Measurable but small: a 0.2 % ghost shows mainly in the dark isogyres and isochromes.
-  EXPECT_GT(de12, 1e-3);
-  EXPECT_LT(de12, 2.0);
-  EXPECT_GT(de23, 1e-4);  // depth-3 paths leave forward at steep angles (curved faces, ledge)
-  EXPECT_LT(de13, 2.0);
+  // Measured (gcc release): dT 1→2 0.0380, 1→3 0.0495, 2→3 0.0150. The render is deterministic
+  // (16 fixed bands, one pass), so across compilers and sanitizer builds only rounding moves these,
+  // far below 1e-4. The budget is a factor 1.5 either way: about what losing or doubling one
+  // lens's ghosts would change (objective and condenser each carry about half of the ghost light,
+  // see the white field below), so a change to the ghost paths fails here.
+  EXPECT_GT(de12, 0.038 / 1.5);
+  EXPECT_LT(de12, 0.038 * 1.5);
+  EXPECT_GT(de13, 0.0495 / 1.5);
+  EXPECT_LT(de13, 0.0495 * 1.5);
+  EXPECT_GT(de23, 0.015 / 1.5);  // depth-3 paths leave forward at steep angles (curved faces, ledge)
+  EXPECT_LT(de23, 0.015 * 1.5);
 
   // Energy: an empty stage between parallel polars. Undo the exposure normalisation (the direct
   // light is divided by the axial depth-0 transmission of both lenses): what reaches the image,
