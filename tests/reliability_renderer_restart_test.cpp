@@ -76,22 +76,22 @@ void expect_consistent(const RenderImage& img) {
 
 void restart_storm(int restarts, bool report_memory) {
   ProgressiveRenderer renderer(render_threads());
+  // The storm's scenes: restart i takes scene(i) (every 97th one invalid: it must throw and keep
+  // the previous scene rendering), then the last scene, which must still render to the end.
   std::mt19937 rng(7);
-  // Every scene of the storm, drawn before it starts, so that the display thread knows the size
-  // of the image each generation must have: generation g is the g-th accepted restart.
-  std::vector<Scene> scenes;
+  auto scene = [&](int i) {
+    Scene s = random_scene(rng);
+    if (i % 97 == 13) s.objective.na = 1.5;
+    return s;
+  };
+  // The size of the image each generation must have, from a dry run of the same draws, so that
+  // the display thread can check every snapshot: generation g is the g-th accepted restart.
   std::vector<std::pair<int, int>> size_of_generation{{0, 0}};  // [0]: before any restart
-  for (int i = 0; i < restarts; ++i) {
-    scenes.push_back(random_scene(rng));
-    if (i % 97 == 13)
-      scenes.back().objective.na = 1.5;  // invalid: must throw and keep the previous scene rendering
-    else
-      size_of_generation.push_back({scenes.back().render.width, scenes.back().render.height});
+  for (int i = 0; i <= restarts; ++i) {
+    const Scene s = scene(i);
+    if (i == restarts || i % 97 != 13) size_of_generation.push_back({s.render.width, s.render.height});
   }
-  // The last scene must still render to the end after the storm.
-  Scene last = random_scene(rng);
-  last.render.wavelengths = 8;
-  size_of_generation.push_back({last.render.width, last.render.height});
+  rng.seed(7);
 
   std::atomic<bool> done{false};
   std::atomic<long> snapshots{0}, stale{0}, wrong_size{0};
@@ -126,17 +126,19 @@ void restart_storm(int restarts, bool report_memory) {
     if (i == std::min(1000, restarts / 10)) rss_warm = status_kib("VmRSS");
     if (i % 97 == 13) {
       try {
-        renderer.restart(scenes[i]);
+        renderer.restart(scene(i));
         ADD_FAILURE() << "an invalid scene was accepted";
       } catch (const InputError&) {
         ++rejected;
       }
       continue;
     }
-    renderer.restart(scenes[i]);
+    renderer.restart(scene(i));
     if (i % 50 == 0) renderer.wait(0.002);  // let some renders finish passes
     if (i % 211 == 0) renderer.cancel();
   }
+  Scene last = random_scene(rng);
+  last.render.wavelengths = 8;
   renderer.restart(last);
   EXPECT_TRUE(renderer.wait(120.0)) << "the final render did not finish";
   done = true;
