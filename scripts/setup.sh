@@ -4,7 +4,7 @@ set -euo pipefail
 PKGS=(cmake g++ pkg-config ninja-build
       libglfw3-dev libimgui-dev libosmesa6-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri
       libglm-dev libembree-dev libopenimageio-dev openimageio-tools libtbb-dev
-      nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev colord-data xvfb xauth
+      nlohmann-json3-dev libcli11-dev libpng-dev libgtest-dev libbenchmark-dev colord-data xvfb xauth
       clang libclang-rt-14-dev)
 missing=()
 for p in "${PKGS[@]}"; do

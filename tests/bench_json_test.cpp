@@ -63,6 +63,18 @@ TEST_F(BenchQuick, JsonRowsKeepTheirShapeAndConvergedStrategiesMatchTheReference
     EXPECT_LE(r["p95_de2000"].get<double>(), r["max_de2000"].get<double>() + 1e-12) << r.dump();
   }
 
+  SCOPED_TRACE("process start: the 8x8 render was timed as a new process");
+  ASSERT_TRUE(report_->contains("process_start"));
+  const auto& start = (*report_)["process_start"];
+  EXPECT_EQ(start["runs"].get<int>(), 5);  // --quick
+  // min ≤ median ≤ max by construction; a process start takes at least a millisecond and, even on
+  // a loaded machine, well under 10 s (it measured 0.77 s before OpenImageIO was made lazy).
+  EXPECT_LE(start["min_ms"].get<double>(), start["median_ms"].get<double>());
+  EXPECT_LE(start["median_ms"].get<double>(), start["max_ms"].get<double>());
+  EXPECT_GT(start["min_ms"].get<double>(), 1.0);
+  EXPECT_LT(start["max_ms"].get<double>(), 10000.0);
+  EXPECT_GT(start["max_rss_kb"].get<long>(), 0);
+
   SCOPED_TRACE("the issue's scenes and strategies are present");
   std::set<std::string> scenes, strategies;
   for (const auto& r : (*report_)["rows"]) {

@@ -2,6 +2,7 @@
 // pmsim-bench: every bench scene rendered with every strategy, each image compared per pixel with
 // the scene's converged reference (CIEDE2000), plus the issue-5 targets and the lens-tracing
 // throughput, as a table, JSON rows and the frontier plot/markdown.
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/bench/lens_throughput.h"
+#include "core/bench/process_start.h"
 
 namespace pmsim {
 
@@ -21,6 +23,8 @@ struct BenchOptions {
   std::string scene_filter;     // only scenes whose name contains this ("" = all)
   std::string strategy_filter;  // only strategies whose name contains this ("" = all)
   std::string images_dir;       // write every image (and the references) as PNG here ("" = none)
+  int process_start_runs = 0;   // 8×8 pmsim-render processes timed (0: 21, quick 5; < 0: skip)
+  std::string render_binary;    // pmsim-render to time ("": next to this executable)
 };
 
 // One JSON row. The first eight keys are the contract of issue 5.
@@ -48,6 +52,7 @@ struct BenchReport {
   std::vector<BenchRow> rows;
   std::vector<SceneReferenceInfo> references;
   std::vector<ThroughputResult> throughput;
+  std::optional<ProcessStartResult> process_start;
   std::vector<std::string> notes;
   double total_s = 0.0;
   double load_average = 0.0;    // 1-minute load average at the end of the run (/proc/loadavg)

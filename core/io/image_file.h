@@ -1,5 +1,6 @@
 #pragma once
-// Image files through OpenImageIO. PNG: 8-bit sRGB, out-of-gamut colours clipped per channel in
+// Image files: PNG through libpng, EXR and TIFF (and every read) through OpenImageIO, loaded on
+// first use (core/io/image_codec.h). PNG: 8-bit sRGB, out-of-gamut colours clipped per channel in
 // linear RGB before encoding. EXR and TIFF: linear float RGB. Settings go into the metadata
 // ("pmsim:scene" holds the scene JSON). Every write is atomic: a temporary file in the target
 // folder renamed into place, so a failed write leaves any existing file intact.
