@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <new>
 #include <cstdio>
 #include <filesystem>
@@ -120,7 +121,7 @@ void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
 
 void progress_bar(const pmsim::RenderImage& img) {
   std::fprintf(stderr, "\r%-10s pass %2d  %5d bands  ΔE≈%7.3f  %8.1f ms", img.converged ? "done" : "rendering",
-               img.passes, img.wavelengths, img.error_estimate, img.time_ms);
+               img.passes, img.wavelengths, img.error_estimate.value_or(std::nan("")), img.time_ms);
   std::fflush(stderr);
 }
 
@@ -179,7 +180,7 @@ int main(int argc, char** argv) {
       stats = {{"time_ms", img.time_ms},
                {"samples_per_pixel", img.samples_per_pixel},
                {"wavelengths", img.wavelengths},
-               {"error_estimate", img.error_estimate},
+               {"error_estimate", img.error_estimate ? nlohmann::json(*img.error_estimate) : nlohmann::json()},
                {"converged", img.converged},
                {"passes", img.passes},
                {"model_report", img.model_report}};

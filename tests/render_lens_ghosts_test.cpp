@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/microscope/lens_ghosts.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
@@ -80,7 +80,7 @@ TEST(LensGhosts, DepthOneIsExactlyThePhysicalModelWithoutGhosts) {
   const RenderImage b = ProgressiveRenderer::render(cono_scene(1), 1);
   ASSERT_EQ(a.xyz.size(), b.xyz.size());
   EXPECT_EQ(a.xyz, b.xyz);
-  EXPECT_EQ(build_setup(cono_scene(1))->ghost_xyz.size(), 0u);
+  EXPECT_EQ(compile_evaluation_plan(cono_scene(1))->ghost_xyz().size(), 0u);
 }
 
 TEST(LensGhosts, GhostsChangeTheFigureSlightlyAndNeverAddEnergy) {
@@ -110,13 +110,13 @@ TEST(LensGhosts, GhostsChangeTheFigureSlightlyAndNeverAddEnergy) {
   Scene e = cono_scene(3);
   e.sample_in = false;
   e.analyzer_deg = 0.0;
-  const auto S = build_setup(e);
-  const LensGhostImage g = lens_ghost_image(*S);
+  const auto plan = compile_evaluation_plan(e);
+  const LensGhostImage g = lens_ghost_image(*plan);
   const RenderImage img = ProgressiveRenderer::render(e, 1);
   const double tau4 = std::pow(lens_ghost_table(3, false).axial_intensity, 2.0);
   double direct = 0.0, lit = 0.0;
-  for (std::size_t i = 0; i + 1 < S->pixel_offset.size(); ++i)
-    if (S->pixel_offset[i + 1] > S->pixel_offset[i]) {
+  for (std::size_t i = 0; i + 1 < plan->pixel_offset().size(); ++i)
+    if (plan->pixel_offset()[i + 1] > plan->pixel_offset()[i]) {
       lit += 1.0;
       direct += img.xyz[3 * i + 1] - g.xyz[3 * i + 1];
     }

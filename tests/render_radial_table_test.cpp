@@ -1,4 +1,4 @@
-// A uniaxial plate cut ⟂ its optic axis is symmetric about the stage normal, so build_setup fits its
+// A uniaxial plate cut ⟂ its optic axis is symmetric about the stage normal, so compile_evaluation_plan fits its
 // conoscopic figure from a radial table of modal fits instead of three mode solutions per pixel.
 // The table must reproduce the per-direction fits (Γ and the mode amplitudes) and the image.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
 #include "core/render/spectral_level.h"
@@ -28,24 +28,24 @@ Scene calcite_figure(int size, double stage_deg) {
 }
 
 // The same set-up with every unit fitted from its own three mode solutions (the general path).
-MicroscopeSetup per_direction_fits(const MicroscopeSetup& S) {
-  MicroscopeSetup P = S;
-  const TrainState train = make_train(S.scene, S.compensator, 550.0);
+EvaluationPlan per_direction_fits(const EvaluationPlan& plan) {
+  std::vector<ModalTerms> terms = plan.modal_terms();
+  const TrainState train = make_train(plan.scene(), plan.compensator(), 550.0);
   PreparedPlate anchors[3];
-  for (int a = 0; a < 3; ++a) anchors[a] = S.prepare(0, ModalFit::kAnchorNm[a]);
-  for (std::size_t u = 0; u < S.units.size(); ++u) {
+  for (int a = 0; a < 3; ++a) anchors[a] = plan.prepare(0, ModalFit::kAnchorNm[a]);
+  for (std::size_t u = 0; u < plan.units().size(); ++u) {
     ModalFit fit;
-    fit.fit(anchors, S.units[u].k_air);
+    fit.fit(anchors, plan.units()[u].k_air);
     glm::dmat2 c, o;
-    S.lens_jones(S.units[u].k_air, c, o);
-    P.terms[u] = make_modal_terms(fit, train, 1.0, &c, &o);
+    plan.lens_jones(plan.units()[u].k_air, c, o);
+    terms[u] = make_modal_terms(fit, train, 1.0, &c, &o);
   }
-  return P;
+  return plan.with_modal_terms(std::move(terms));
 }
 
-double image_difference(const MicroscopeSetup& A, const MicroscopeSetup& B, int bands) {
+double image_difference(const EvaluationPlan& A, const EvaluationPlan& B, int bands) {
   const SpectralLevel LA = make_spectral_level(A, bands), LB = make_spectral_level(B, bands);
-  std::vector<glm::dvec3> ua(A.units.size()), ub(B.units.size());
+  std::vector<glm::dvec3> ua(A.units().size()), ub(B.units().size());
   for (std::size_t u = 0; u < ua.size(); ++u) {
     ua[u] = evaluate_unit(A, LA, static_cast<int>(u));
     ub[u] = evaluate_unit(B, LB, static_cast<int>(u));
@@ -58,14 +58,14 @@ double image_difference(const MicroscopeSetup& A, const MicroscopeSetup& B, int 
 
 TEST(RadialModalTable, CalciteFigureFitsMatchPerDirectionFits) {
   for (double stage : {0.0, 33.0}) {
-    const auto S = build_setup(calcite_figure(96, stage));
-    ASSERT_NE(S->model_report.find("radial table"), std::string::npos) << S->model_report;
-    const MicroscopeSetup P = per_direction_fits(*S);
+    const auto plan = compile_evaluation_plan(calcite_figure(96, stage));
+    ASSERT_NE(plan->model_report().find("radial table"), std::string::npos) << plan->model_report();
+    const EvaluationPlan direct = per_direction_fits(*plan);
     double max_dgamma = 0.0, max_dc = 0.0;
-    for (std::size_t u = 0; u < S->units.size(); ++u)
+    for (std::size_t u = 0; u < plan->units().size(); ++u)
       for (int a = 0; a < 3; ++a) {
-        max_dgamma = std::max(max_dgamma, std::fabs(S->terms[u].gamma_nm[a] - P.terms[u].gamma_nm[a]));
-        for (int k = 0; k < 5; ++k) max_dc = std::max(max_dc, std::fabs(S->terms[u].c[k][a] - P.terms[u].c[k][a]));
+        max_dgamma = std::max(max_dgamma, std::fabs(plan->modal_terms()[u].gamma_nm[a] - direct.modal_terms()[u].gamma_nm[a]));
+        for (int k = 0; k < 5; ++k) max_dc = std::max(max_dc, std::fabs(plan->modal_terms()[u].c[k][a] - direct.modal_terms()[u].c[k][a]));
       }
     // Linear interpolation in sin²θ over 1025 entries: h²/8·|Γ''| ≈ 0.01 nm for Γ ≤ 1.7e5 nm;
     // 0.05 nm of Γ is 8e-4 rad of phase at 400 nm, invisible.
@@ -80,10 +80,10 @@ TEST(RadialModalTable, CalciteFigureFitsMatchPerDirectionFits) {
 TEST(RadialModalTable, CalciteFigureImageUnchanged) {
   // 512² behind PMSIM_LONG (a few seconds); 128² otherwise.
   const int size = std::getenv("PMSIM_LONG") ? 512 : 128;
-  const auto S = build_setup(calcite_figure(size, 0.0));
-  const MicroscopeSetup P = per_direction_fits(*S);
+  const auto plan = compile_evaluation_plan(calcite_figure(size, 0.0));
+  const EvaluationPlan direct = per_direction_fits(*plan);
   // The issue allows 0.1 CIEDE2000 of change in the converged image for speed-ups.
-  const double de = image_difference(*S, P, 32);
+  const double de = image_difference(*plan, direct, 32);
   std::printf("mean CIEDE2000 table vs per-direction fits at %d^2: %.4f\n", size, de);
   EXPECT_LT(de, 0.1);
 }
@@ -91,8 +91,8 @@ TEST(RadialModalTable, CalciteFigureImageUnchanged) {
 TEST(RadialModalTable, TiltedOpticAxisUsesPerDirectionFits) {
   Scene s = calcite_figure(96, 0.0);
   s.sample.optic_axis = {0.0, std::sin(0.2), std::cos(0.2)};  // not symmetric about the stage normal
-  const auto S = build_setup(s);
-  EXPECT_EQ(S->model_report.find("radial table"), std::string::npos) << S->model_report;
+  const auto plan = compile_evaluation_plan(s);
+  EXPECT_EQ(plan->model_report().find("radial table"), std::string::npos) << plan->model_report();
 }
 
 }  // namespace

@@ -330,8 +330,10 @@ void App::draw_status() {
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
   const RenderImage& im = image_;
   const bool current = image_current_;
-  ImGui::Text("%s  %.1f spp  %d wl  pass %d  err %.2f dE00  %s  %.0f ms", current ? "" : "(previous)",
-              im.samples_per_pixel, im.wavelengths, im.passes, im.error_estimate,
+  char err[32] = "err -";  // no estimate yet (a preview, the first pass)
+  if (im.error_estimate) std::snprintf(err, sizeof err, "err %.2f dE00", *im.error_estimate);
+  ImGui::Text("%s  %.1f spp  %d wl  pass %d  %s  %s  %.0f ms", current ? "" : "(previous)",
+              im.samples_per_pixel, im.wavelengths, im.passes, err,
               im.converged ? "converged" : "refining", im.time_ms);
   ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  %s", counters_.fps, counters_.frame_ms,
               scene_.stage_deg, notice_.c_str());

@@ -270,7 +270,10 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   ImGui::Text("Render time   %.0f ms", im.time_ms);
   ImGui::Text("Samples/pixel %.1f (%d wavelengths, %d passes)", im.samples_per_pixel,
               im.wavelengths, im.passes);
-  ImGui::Text("Error         %.2f dE00 %s", im.error_estimate, im.converged ? "(converged)" : "");
+  if (im.error_estimate)
+    ImGui::Text("Error         %.2f dE00 %s", *im.error_estimate, im.converged ? "(converged)" : "");
+  else
+    ImGui::TextUnformatted("Error         not estimated yet");
   ImGui::Text("UI            %.1f fps, frame build %.1f ms", counters_.fps, counters_.frame_ms);
   if (!im.model_report.empty()) {
     ImGui::TextUnformatted("Models chosen:");

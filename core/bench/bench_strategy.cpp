@@ -12,7 +12,7 @@
 
 #include "core/bench/physical_lens_model.h"
 #include "core/io/scene_file.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 #include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
@@ -40,33 +40,33 @@ std::uint64_t splitmix(std::uint64_t& s) {
 double uniform01(std::uint64_t& s) { return (splitmix(s) >> 11) * (1.0 / 9007199254740992.0); }
 
 // Exact transmission of one unit at one wavelength: plate prepared at λ, Jones matrix per direction.
-double exact_transmission(const MicroscopeSetup& S, const EvalUnit& unit, double nm) {
-  const TrainState train = make_train(S.scene, S.compensator, nm);
-  const OpticalDomain& dom = S.domains[unit.domain];
-  const int D = S.dirs_of(unit);
+double exact_transmission(const EvaluationPlan& plan, const EvalUnit& unit, double nm) {
+  const TrainState train = make_train(plan.scene(), plan.compensator(), nm);
+  const OpticalDomain& dom = plan.domains()[unit.domain];
+  const int D = plan.dirs_of(unit);
   double t = 0.0;
   // Condenser and objective as the renderer has them (aplanatic frame; physical s/p if chosen).
   if (!dom.crystal || unit.thickness_um <= 0.0) {
-    for (int d = 0; d < D; ++d) t += jones_transmission(train, S.with_lenses(JonesMatrix::identity(), S.dir(unit, d)));
+    for (int d = 0; d < D; ++d) t += jones_transmission(train, plan.with_lenses(JonesMatrix::identity(), plan.dir(unit, d)));
     return t / D;
   }
-  PreparedPlate p = S.prepare(unit.domain, nm);
+  PreparedPlate p = plan.prepare(unit.domain, nm);
   p.thickness_um = unit.thickness_um;
   for (int d = 0; d < D; ++d) {
-    const glm::dvec3& k = S.dir(unit, d);
-    t += jones_transmission(train, S.with_lenses(plate_jones(p, k), k));
+    const glm::dvec3& k = plan.dir(unit, d);
+    t += jones_transmission(train, plan.with_lenses(plate_jones(p, k), k));
   }
   t /= D;
   return std::isfinite(t) ? std::max(0.0, t) : 0.0;
 }
 
-glm::dvec3 bench_side_unit(const MicroscopeSetup& S, const BenchStrategy& st, std::size_t u) {
-  const EvalUnit& unit = S.units[u];
+glm::dvec3 bench_side_unit(const EvaluationPlan& plan, const BenchStrategy& st, std::size_t u) {
+  const EvalUnit& unit = plan.units()[u];
   if (st.kind == StrategyKind::Rgb) {
     // Channel wavelengths near the sRGB primaries' dominant wavelengths; T ≡ 1 gives RGB (1,1,1),
     // i.e. the D65 white at Y = 1, the same exposure as the spectral strategies.
-    const glm::dvec3 rgb(exact_transmission(S, unit, 610.0), exact_transmission(S, unit, 550.0),
-                         exact_transmission(S, unit, 465.0));
+    const glm::dvec3 rgb(exact_transmission(plan, unit, 610.0), exact_transmission(plan, unit, 550.0),
+                         exact_transmission(plan, unit, 465.0));
     return linear_srgb_to_xyz(rgb);
   }
   std::uint64_t seed = 0x5eedull * 1000003ull + u;
@@ -80,7 +80,7 @@ glm::dvec3 bench_side_unit(const MicroscopeSetup& S, const BenchStrategy& st, st
   }
   glm::dvec3 xyz(0.0);
   for (int i = 0; i < w.size(); ++i)
-    xyz += observer_weight(S.scene.illuminant, w.nm[i]) * (w.weight_nm[i] * exact_transmission(S, unit, w.nm[i]));
+    xyz += observer_weight(plan.scene().illuminant, w.nm[i]) * (w.weight_nm[i] * exact_transmission(plan, unit, w.nm[i]));
   return xyz;
 }
 
@@ -88,14 +88,14 @@ StrategyResult run_bench_side(const Scene& scene, const BenchStrategy& st) {
   StrategyResult r;
   const auto t0 = Clock::now();
   Scene sc = scene;
-  sc.render.strategy = "exact";  // no modal fit: the set-up only provides geometry
-  const auto S = build_setup(sc);
-  std::vector<glm::dvec3> units(S->units.size());
+  sc.render.strategy = RenderStrategy::Exact;  // no modal fit: the set-up only provides geometry
+  const auto plan = compile_evaluation_plan(sc);
+  std::vector<glm::dvec3> units(plan->units().size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64), [&](const tbb::blocked_range<std::size_t>& b) {
-    for (std::size_t u = b.begin(); u != b.end(); ++u) units[u] = bench_side_unit(*S, st, u);
+    for (std::size_t u = b.begin(); u != b.end(); ++u) units[u] = bench_side_unit(*plan, st, u);
   });
   RenderImage img;
-  develop_image(*S, units, false, img);
+  develop_image(*plan, units, false, img);
   r.time_ms = ms_since(t0);
   r.xyz = std::move(img.xyz);
   r.wavelengths = st.kind == StrategyKind::Rgb ? 3 : st.wavelengths;
@@ -127,7 +127,7 @@ StrategyResult run_pass(const Scene& scene, int threads, int min_pass) {
   r.time_ms = std::max(wall, img.time_ms);
   r.xyz = std::move(img.xyz);
   r.wavelengths = img.wavelengths;
-  r.error_estimate = img.error_estimate;
+  r.error_estimate = img.error_estimate.value_or(-1.0);
   r.model_report = img.model_report;
   r.cpu_ms = cpu;
   return r;
@@ -192,7 +192,7 @@ StrategyResult run_strategy(const Scene& scene, const BenchStrategy& st, int thr
       r.time_ms = ms_since(t0);
       r.xyz = std::move(img.xyz);
       r.wavelengths = img.wavelengths;
-      r.error_estimate = img.error_estimate;
+      r.error_estimate = img.error_estimate.value_or(-1.0);
       r.model_report = img.model_report;
       break;
     }

@@ -2,7 +2,7 @@
 // The ways of rendering a bench scene that pmsim-bench compares. "Product" strategies call the
 // renderer itself (ProgressiveRenderer with scene settings); "bench-side" ones are spectral
 // sampling schemes the renderer does not offer (RGB, stratified and hero wavelengths per pixel),
-// evaluated here on the renderer's own set-up (build_setup: domains, units, pixel references) and
+// evaluated here on the renderer's own evaluation plan (compile_evaluation_plan: domains, units, pixel references) and
 // the crystal's exact Jones matrix, then developed with the renderer's develop_image, so that only
 // the choice of wavelengths differs.
 #include <string>
@@ -36,7 +36,7 @@ struct StrategyResult {
   std::vector<float> xyz;        // width·height·3
   double time_ms = 0.0;          // wall time of the whole render (set-up included)
   int wavelengths = 0;           // spectral samples per unit (renderer: its band count)
-  double error_estimate = -1.0;  // the renderer's own estimate (product strategies)
+  double error_estimate = -1.0;  // the renderer's own estimate (product strategies); -1: none
   double cpu_ms = -1.0;          // ≥ 0: process CPU time of the measured part alone (the first
                                  // pass excludes its warm-up); < 0: the caller measures it
   std::string model_report;

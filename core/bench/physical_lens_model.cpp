@@ -13,7 +13,7 @@
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/modal_fit.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/view_geometry.h"
@@ -157,15 +157,15 @@ void objective_paths(const Optics& O, const glm::dvec3& k, std::vector<Objective
 StrategyResult render_physical_lens_model(const Scene& scene_in) {
   const auto t0 = std::chrono::steady_clock::now();
   Scene scene = scene_in;
-  scene.render.strategy = "exact";  // geometry only: the modes are fitted here, per unit
+  scene.render.strategy = RenderStrategy::Exact;  // geometry only: the modes are fitted here, per unit
   if (scene.render.wavelengths <= 0) scene.render.wavelengths = 32;
-  const auto S = build_setup(scene);
-  std::vector<std::array<PreparedPlate, 3>> anchors(S->domains.size());
-  for (std::size_t d = 0; d < S->domains.size(); ++d)
-    if (S->domains[d].crystal)
-      for (int a = 0; a < 3; ++a) anchors[d][a] = S->prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
-  const SpectralLevel L = make_spectral_level(*S, scene.render.wavelengths);
-  const int W = S->width(), H = S->height();
+  const auto plan = compile_evaluation_plan(scene);
+  std::vector<std::array<PreparedPlate, 3>> anchors(plan->domains().size());
+  for (std::size_t d = 0; d < plan->domains().size(); ++d)
+    if (plan->domains()[d].crystal)
+      for (int a = 0; a < 3; ++a) anchors[d][a] = plan->prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  const SpectralLevel L = make_spectral_level(*plan, scene.render.wavelengths);
+  const int W = plan->width(), H = plan->height();
 
   Optics O;
   const Lens objective(physical_lens_spec(+1));
@@ -210,9 +210,9 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   };
 
   // Unit → pixel (one unit per lit pixel in the conoscopic view).
-  std::vector<long> pixel_of_unit(S->units.size(), -1);
+  std::vector<long> pixel_of_unit(plan->units().size(), -1);
   for (long i = 0; i < static_cast<long>(W) * H; ++i)
-    for (int r = S->pixel_offset[i]; r < S->pixel_offset[i + 1]; ++r) pixel_of_unit[S->refs[r].unit] = i;
+    for (int r = plan->pixel_offset()[i]; r < plan->pixel_offset()[i + 1]; ++r) pixel_of_unit[plan->refs()[r].unit] = i;
 
   // Exposure convention (issue 3): amplitudes relative to the axial ray's depth-0 path through
   // both lenses, so that an empty stage between parallel polars gives Y = 1 on the axis.
@@ -245,20 +245,20 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
 
   tbb::enumerable_thread_specific<std::vector<glm::dvec3>> acc(
       [&] { return std::vector<glm::dvec3>(static_cast<std::size_t>(W) * H, glm::dvec3(0.0)); });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, S->units.size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plan->units().size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
     auto& img = acc.local();
     LensBundle bundle;
     std::vector<PolarizedRay> fw[2];
     std::vector<ObjectivePath> paths;
     for (std::size_t u = range.begin(); u != range.end(); ++u) {
-      const EvalUnit& unit = S->units[u];
+      const EvalUnit& unit = plan->units()[u];
       if (pixel_of_unit[u] < 0) continue;
       CMat2 Jc;
       if (!condenser_jones(O, unit.k_air, Jc, bundle, fw[0])) continue;
       objective_paths(O, unit.k_air, paths, bundle, fw);
       const CVec2 e_s = Jc * p_in;  // field at the sample, transverse basis of k
-      const bool crystal = S->domains[unit.domain].crystal && unit.thickness_um > 0;
-      const double scale = crystal ? unit.thickness_um / S->domains[unit.domain].thickness_um : 1.0;
+      const bool crystal = plan->domains()[unit.domain].crystal && unit.thickness_um > 0;
+      const double scale = crystal ? unit.thickness_um / plan->domains()[unit.domain].thickness_um : 1.0;
       ModalFit fit;
       if (crystal) fit.fit(anchors[unit.domain].data(), unit.k_air);
       for (const ObjectivePath& path : paths) {

@@ -15,7 +15,7 @@
 #include "core/bench/physical_lens_model.h"
 #include "core/io/atomic_file.h"
 #include "core/io/scene_file.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/modal_fit.h"
 #include "core/microscope/optical_train.h"
 #include "core/microscope/sample_source.h"
@@ -96,14 +96,14 @@ struct UnitXyz {
 };
 
 // One unit, one direction: transmissions at every 1 nm band (full) and the 2 nm rule (half).
-void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const EvalUnit& unit,
+void evaluate_direction(const EvaluationPlan& plan, const SpectralLevel& L, const EvalUnit& unit,
                         const glm::dvec3& k, std::vector<PlateModes>& modes, UnitXyz& acc) {
   const int N = L.n;
   const double two_pi = 2.0 * std::numbers::pi;
-  const OpticalDomain& dom = S.domains[unit.domain];
+  const OpticalDomain& dom = plan.domains()[unit.domain];
   if (!dom.crystal || unit.thickness_um <= 0.0) {
     for (int b = 0; b < N; ++b) {
-      const double t = jones_transmission(L.train[b], S.with_lenses(JonesMatrix::identity(), k));
+      const double t = jones_transmission(L.train[b], plan.with_lenses(JonesMatrix::identity(), k));
       acc.full += L.weight[b] * t;
       if (b % 2 == 0) acc.half += (L.weight[b] + L.weight[std::min(b + 1, N - 1)]) * t;
     }
@@ -128,14 +128,14 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
     }
   }
   glm::dmat2 lens_c, lens_o;
-  S.lens_jones(k, lens_c, lens_o);
+  plan.lens_jones(k, lens_c, lens_o);
   const glm::dmat2 lens_oc = lens_o * lens_c;
   for (int b = 0; b < N; ++b) {
     double t, t_half = 0.0;
     if (sample_jones) {
       PreparedPlate p = L.prepared[b][unit.domain];
       p.thickness_um = unit.thickness_um;
-      t = jones_transmission(L.train[b], S.with_lenses(plate_jones(p, k), k));
+      t = jones_transmission(L.train[b], plan.with_lenses(plate_jones(p, k), k));
       t_half = t;
     } else {
       // Lenses (condenser C, objective O; the aplanatic frame for ideal ones): the modes leave
@@ -165,7 +165,7 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
 
 Scene reference_scene(const Scene& scene) {
   Scene r = scene;
-  r.render.strategy = "exact";
+  r.render.strategy = RenderStrategy::Exact;
   r.render.wavelengths = kReferenceBands;
   r.render.single_wavelength_nm = 0.0;
   if (r.sample_in && r.sample.type != SampleType::Plate) r.render.spp = std::max(r.render.spp, 16);
@@ -194,10 +194,10 @@ bool try_cache(const std::string& path, const Scene& s, ReferenceImage& out) {
   return true;
 }
 
-std::vector<std::uint8_t> lit_mask(const MicroscopeSetup& S) {
-  const std::size_t n = static_cast<std::size_t>(S.width()) * S.height();
+std::vector<std::uint8_t> lit_mask(const EvaluationPlan& plan) {
+  const std::size_t n = static_cast<std::size_t>(plan.width()) * plan.height();
   std::vector<std::uint8_t> lit(n);
-  for (std::size_t i = 0; i < n; ++i) lit[i] = S.pixel_offset[i] != S.pixel_offset[i + 1];
+  for (std::size_t i = 0; i < n; ++i) lit[i] = plan.pixel_offset()[i] != plan.pixel_offset()[i + 1];
   return lit;
 }
 
@@ -209,33 +209,33 @@ ReferenceImage converged_reference(const Scene& scene, const std::string& cache_
   ReferenceImage R;
   if (try_cache(path, rs, R)) return R;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto S = build_setup(rs);
-  const SpectralLevel L = make_spectral_level(*S, kReferenceBands);
-  std::vector<UnitXyz> units(S->units.size());
+  const auto plan = compile_evaluation_plan(rs);
+  const SpectralLevel L = make_spectral_level(*plan, kReferenceBands);
+  std::vector<UnitXyz> units(plan->units().size());
   tbb::enumerable_thread_specific<std::vector<PlateModes>> scratch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, S->units.size(), 64),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plan->units().size(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       auto& modes = scratch.local();
                       for (std::size_t u = r.begin(); u != r.end(); ++u) {
-                        const EvalUnit& unit = S->units[u];
-                        const int D = S->dirs_of(unit);
+                        const EvalUnit& unit = plan->units()[u];
+                        const int D = plan->dirs_of(unit);
                         UnitXyz acc;
-                        for (int d = 0; d < D; ++d) evaluate_direction(*S, L, unit, S->dir(unit, d), modes, acc);
+                        for (int d = 0; d < D; ++d) evaluate_direction(*plan, L, unit, plan->dir(unit, d), modes, acc);
                         units[u].full = acc.full / static_cast<double>(D);
                         units[u].half = acc.half / static_cast<double>(D);
                       }
                     });
-  R.width = S->width();
-  R.height = S->height();
+  R.width = plan->width();
+  R.height = plan->height();
   std::vector<glm::dvec3> v(units.size());
   RenderImage img;
   for (std::size_t u = 0; u < units.size(); ++u) v[u] = units[u].full;
-  develop_image(*S, v, false, img);
+  develop_image(*plan, v, false, img);
   R.xyz = std::move(img.xyz);
   for (std::size_t u = 0; u < units.size(); ++u) v[u] = units[u].half;
-  develop_image(*S, v, false, img);
+  develop_image(*plan, v, false, img);
   R.xyz_half = std::move(img.xyz);
-  R.lit = lit_mask(*S);
+  R.lit = lit_mask(*plan);
   R.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!path.empty()) {
     write_cache(path, R);
@@ -250,7 +250,7 @@ ReferenceImage converged_physical_reference(const Scene& scene, const std::strin
   rs.optics.lens_depth = 5;
   rs.optics.schlick = false;
   rs.render.wavelengths = 128;
-  rs.render.strategy = "modal";
+  rs.render.strategy = RenderStrategy::Modal;
   const std::string path = cache_path(cache_dir, "physical-lens-model:" + scene_to_json(rs).dump());
   ReferenceImage R;
   if (try_cache(path, rs, R)) return R;
@@ -259,12 +259,12 @@ ReferenceImage converged_physical_reference(const Scene& scene, const std::strin
   rs.render.wavelengths = 64;
   StrategyResult half = render_physical_lens_model(rs);
   Scene geo = rs;
-  geo.render.strategy = "exact";
+  geo.render.strategy = RenderStrategy::Exact;
   R.width = rs.render.width;
   R.height = rs.render.height;
   R.xyz = std::move(full.xyz);
   R.xyz_half = std::move(half.xyz);
-  R.lit = lit_mask(*build_setup(geo));
+  R.lit = lit_mask(*compile_evaluation_plan(geo));
   R.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!path.empty()) {
     write_cache(path, R);

@@ -129,6 +129,8 @@ const std::initializer_list<std::pair<const char*, Compensator>> kCompensators =
     {"quartz_wedge", Compensator::QuartzWedge}};
 const std::initializer_list<std::pair<const char*, LensModel>> kLensModels = {
     {"auto", LensModel::Auto}, {"ideal", LensModel::Ideal}, {"physical", LensModel::Physical}};
+const std::initializer_list<std::pair<const char*, RenderStrategy>> kRenderStrategies = {
+    {"auto", RenderStrategy::Auto}, {"modal", RenderStrategy::Modal}, {"exact", RenderStrategy::Exact}};
 
 CrystalIndices as_crystal(const json& v) {
   if (!v.is_object()) throw BadValue{"expected {\"no\":..,\"ne\":..} or {\"nalpha\":..,\"nbeta\":..,\"ngamma\":..}"};
@@ -245,8 +247,8 @@ const std::vector<Key>& keys() {
       {"render.tolerance",
        [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
        [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
-      {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_string(v); },
-       [](const Scene& s) -> json { return s.render.strategy; }},
+      {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kRenderStrategies); },
+       [](const Scene& s) -> json { return enum_name(s.render.strategy, kRenderStrategies); }},
       {"optics.lens_model",
        [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},

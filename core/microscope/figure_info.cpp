@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 
 namespace pmsim {
 
@@ -25,10 +25,10 @@ FigureInfo describe_figure(const Scene& scene_in) {
   Scene scene = scene_in;
   scene.render.width = scene.render.height = 8;
   scene.render.spp = 1;
-  scene.render.strategy = "exact";
-  const auto S = build_setup(scene);
-  const int dom = std::max(0, domain_at_image_point(*S, 0.5, 0.5));
-  const OpticalDomain& D = S->domains[dom];
+  scene.render.strategy = RenderStrategy::Exact;
+  const auto plan = compile_evaluation_plan(scene);
+  const int dom = std::max(0, domain_at_image_point(*plan, 0.5, 0.5));
+  const OpticalDomain& D = plan->domains()[dom];
   FigureInfo f;
   f.mineral = D.mineral;
   if (!D.crystal) {

@@ -14,7 +14,7 @@
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/view_geometry.h"
@@ -91,7 +91,6 @@ glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) {
   return {c * v.x - s * v.y, s * v.x + c * v.y, v.z};
 }
 
-JonesMatrix real_jones(const glm::dmat2& m) { return {m[0][0], m[1][0], m[0][1], m[1][1]}; }
 
 // One ghost path as a Jones matrix from transverse_basis(k_in) to transverse_basis(k_out):
 // out = a_s·(in·ŝ) ŝ_out + a_p·(in·p̂_in) p̂_out, the s/p eigen-amplitudes a of the meridional
@@ -127,12 +126,12 @@ const LensGhostTable& lens_ghost_table(int depth, bool schlick) {
   return *slot;
 }
 
-LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool>* cancel) {
+LensGhostImage lens_ghost_image(const EvaluationPlan& plan, const std::atomic<bool>* cancel) {
   LensGhostImage img;
-  const Scene& sc = S.scene;
-  if (!S.lenses || sc.optics.lens_depth < 2 || sc.mode != ViewMode::Cono || !sc.bertrand_in) return img;
+  const Scene& sc = plan.scene();
+  if (!plan.lenses() || sc.optics.lens_depth < 2 || sc.mode != ViewMode::Cono || !sc.bertrand_in) return img;
   const LensGhostTable& table = lens_ghost_table(sc.optics.lens_depth, sc.optics.schlick);
-  const int W = S.width(), H = S.height();
+  const int W = plan.width(), H = plan.height();
   const int stride = std::max(1, (std::max(W, H) + kMaxGridSide - 1) / kMaxGridSide);
   const int GW = (W + stride - 1) / stride, GH = (H + stride - 1) / stride;
   const double half = 0.5 * std::min(W, H);
@@ -160,11 +159,11 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool
     for (glm::dvec3& w : weight) w *= scale;
   }
   std::vector<TrainState> trains;
-  for (double l : nm) trains.push_back(make_train(sc, S.compensator, l));
+  for (double l : nm) trains.push_back(make_train(sc, plan.compensator(), l));
 
-  // The domain under the field centre (as build_setup's conoscopic units).
+  // The domain under the field centre (as conoscopic_figure_view's units).
   const EvalUnit* unit0 = nullptr;
-  for (const EvalUnit& u : S.units)
+  for (const EvalUnit& u : plan.units())
     if (!u.cone) {
       unit0 = &u;
       break;
@@ -172,11 +171,11 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool
   if (!unit0) return img;
   const int dom = unit0->domain;
   const double thickness = unit0->thickness_um;
-  const bool crystal = S.domains[dom].crystal && thickness > 0;
+  const bool crystal = plan.domains()[dom].crystal && thickness > 0;
   std::vector<PreparedPlate> prepared(nm.size());
   if (crystal)
     for (std::size_t b = 0; b < nm.size(); ++b) {
-      prepared[b] = S.prepare(dom, nm[b]);
+      prepared[b] = plan.prepare(dom, nm[b]);
       prepared[b].thickness_um = thickness;
     }
   auto sample_jones = [&](std::size_t b, const glm::dvec3& k) {
@@ -201,7 +200,7 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool
         const auto& paths = table.at(sin_t);
         row_paths[cy] += static_cast<int>(paths.size());
         glm::dmat2 lc, lo;
-        S.lens_jones(k, lc, lo);
+        plan.lens_jones(k, lc, lo);
         // Per path: exit direction, target cell, and per band the complex amplitudes.
         struct Hit {
           glm::dvec3 kg;
@@ -238,14 +237,14 @@ LensGhostImage lens_ghost_image(const MicroscopeSetup& S, const std::atomic<bool
             if (hits[i].in_objective) {
               const JonesMatrix G = path_jones(k, hits[i].kg, s_hat, a_s, a_p);
               // The Bertrand side sees the ghost in the lab frame: the aplanatic mapping of k_g.
-              const JonesMatrix M = real_jones(glm::transpose(aplanatic_frame(hits[i].kg))) * G * J * real_jones(lc);
+              const JonesMatrix M = jones_from_real(glm::transpose(aplanatic_frame(hits[i].kg))) * G * J * jones_from_real(lc);
               for (int o = 0; o < t.outputs; ++o) amp_obj[i * t.outputs + o] = jones_output(t, M, o).x;
             }
             // Condenser ghost (reciprocal path): aperture direction k_g → specimen along k →
             // sample → objective (depth 0) → this cell.
             if (hits[i].in_condenser) {
               const JonesMatrix G = path_jones(hits[i].kg, k, s_hat, a_s, a_p);
-              const JonesMatrix M = real_jones(lo) * J * G * real_jones(aplanatic_frame(hits[i].kg));
+              const JonesMatrix M = jones_from_real(lo) * J * G * jones_from_real(aplanatic_frame(hits[i].kg));
               for (int o = 0; o < t.outputs; ++o) amp_cond[i * t.outputs + o] = jones_output(t, M, o).x;
             }
           }

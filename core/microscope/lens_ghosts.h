@@ -26,7 +26,7 @@
 
 namespace pmsim {
 
-struct MicroscopeSetup;
+class EvaluationPlan;
 
 struct LensGhostPath {
   glm::dvec3 dir{0.0, 0.0, 1.0};  // exit direction, meridional plane y = 0 (azimuth 0)
@@ -56,9 +56,9 @@ struct LensGhostImage {
   int paths = 0;                   // ghost paths used
 };
 
-// The ghost light of a conoscopic (Bertrand in) setup with physical lenses and dT ≥ 2; empty xyz
+// The ghost light of a conoscopic (Bertrand in) plan with physical lenses and dT ≥ 2; empty xyz
 // otherwise. Computed on a grid of at most ~128² source directions, bilinearly spread to pixels.
 // A set `cancel` stops it between grid rows (the result is then incomplete: discard it).
-LensGhostImage lens_ghost_image(const MicroscopeSetup& setup, const std::atomic<bool>* cancel = nullptr);
+LensGhostImage lens_ghost_image(const EvaluationPlan& plan, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace pmsim

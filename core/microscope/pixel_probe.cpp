@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/materials/medium.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 #include "core/microscope/view_geometry.h"
 
@@ -19,8 +19,8 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
   scene.render.width = std::max(1, static_cast<int>(std::lround(W / shrink)));
   scene.render.height = std::max(1, static_cast<int>(std::lround(H / shrink)));
   scene.render.spp = 1;
-  scene.render.strategy = "exact";
-  const auto S = build_setup(scene);
+  scene.render.strategy = RenderStrategy::Exact;
+  const auto plan = compile_evaluation_plan(scene);
   PixelProbe p;
   x_frac = std::clamp(x_frac, 0.0, 1.0);
   y_frac = std::clamp(y_frac, 0.0, 1.0);
@@ -33,8 +33,8 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
     if (std::hypot(f.x, f.y) > kParallelBeamSinTheta / scene.objective.na) return p;
   }
   p.lit = true;
-  const int dom = cono_bfp ? domain_at_image_point(*S, 0.5, 0.5) : domain_at_image_point(*S, x_frac, y_frac);
-  const OpticalDomain& D = S->domains[std::max(0, dom)];
+  const int dom = cono_bfp ? domain_at_image_point(*plan, 0.5, 0.5) : domain_at_image_point(*plan, x_frac, y_frac);
+  const OpticalDomain& D = plan->domains()[std::max(0, dom)];
   p.mineral = D.mineral;
   p.thickness_um = D.thickness_um;
   if (scene.sample_in && scene.sample.type == SampleType::Wedge) {
@@ -42,19 +42,19 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
     p.thickness_um = wedge_thickness_um(scene_in, sample_from_field(at, scene.stage_deg));
   }
   for (double nm = 380.0; nm <= 780.0 + 1e-9; nm += 5.0) {
-    const TrainState train = make_train(scene, S->compensator, nm);
+    const TrainState train = make_train(scene, plan->compensator(), nm);
     JonesMatrix J = JonesMatrix::identity();
     if (D.crystal && p.thickness_um > 0) {
-      PreparedPlate pp = S->prepare(std::max(0, dom), nm);
+      PreparedPlate pp = plan->prepare(std::max(0, dom), nm);
       pp.thickness_um = p.thickness_um;
       J = plate_jones(pp, k);
     }
-    const double t = jones_transmission(train, S->with_lenses(J, k));
+    const double t = jones_transmission(train, plan->with_lenses(J, k));
     p.wavelength_nm.push_back(nm);
     p.transmission.push_back(std::isfinite(t) ? t : 0.0);
   }
   if (D.crystal && p.thickness_um > 0) {
-    PreparedPlate pp = S->prepare(std::max(0, dom), 550.0);
+    PreparedPlate pp = plan->prepare(std::max(0, dom), 550.0);
     pp.thickness_um = p.thickness_um;
     p.retardation_nm = plate_modes(pp, k).retardation_nm;
   }

@@ -39,11 +39,6 @@ std::string vec_text(const std::array<double, 3>& v) {
 }
 }  // namespace
 
-bool render_strategy_known(const std::string& s) {
-  return s == "auto" || s == "modal" || s == "exact";
-}
-std::string render_strategy_list() { return "auto|modal|exact"; }
-
 void check_pixel_count(const Scene& s, const std::string& file, const char* key) {
   const long long n = static_cast<long long>(s.render.width) * s.render.height;
   const bool w = std::string(key) == "render.width";
@@ -130,8 +125,6 @@ void check_scene(const Scene& s, const std::string& file) {
           "must be 0 (white light) or within 380–780 nm");
   require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file,
           "render.tolerance", num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
-  require(render_strategy_known(s.render.strategy), file, "render.strategy", s.render.strategy,
-          "unknown strategy (" + render_strategy_list() + ")");
   require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= 10, file, "optics.lens_depth",
           num(s.optics.lens_depth), "must be in 0…10");
 }

@@ -4,6 +4,8 @@
 // field to another. Used where rays of one source and wavelength are summed coherently.
 #include <complex>
 
+#include <glm/mat2x2.hpp>
+
 namespace pmsim {
 
 using complexd = std::complex<double>;
@@ -33,6 +35,10 @@ struct JonesMatrix {
     return {xx + o.xx, xy + o.xy, yx + o.yx, yy + o.yy};
   }
 };
+
+// A real 2×2 matrix (a lens' frame change or diattenuation) as a Jones matrix. glm is
+// column-major (m[column][row]), JonesMatrix row-major: xx = m[0][0], xy = m[1][0], yx = m[0][1].
+inline JonesMatrix jones_from_real(const glm::dmat2& m) { return {m[0][0], m[1][0], m[0][1], m[1][1]}; }
 
 // Linear polarizer (ideal) whose transmission axis is at angle_rad from the basis x axis.
 inline JonesMatrix linear_polarizer(double angle_rad) {

@@ -10,9 +10,9 @@
 
 namespace pmsim {
 
-SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
+SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
   SpectralLevel L;
-  const double mono = S.scene.render.single_wavelength_nm;
+  const double mono = plan.scene().render.single_wavelength_nm;
   if (mono > 0) {
     L.n = 1;
     L.monochromatic = true;
@@ -30,7 +30,7 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
       glm::dvec3 w(0.0), m(0.0);
       for (int s = 0; s < sub; ++s) {
         const double t = (s + 0.5) * L.band_nm / sub;
-        const glm::dvec3 ws = observer_weight(S.scene.illuminant, lo + t) * (L.band_nm / sub);
+        const glm::dvec3 ws = observer_weight(plan.scene().illuminant, lo + t) * (L.band_nm / sub);
         w += ws;
         m += ws * (t - 0.5 * L.band_nm);
       }
@@ -41,14 +41,14 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
     // differs from the tables' own quadrature by ~1e-6).
     glm::dvec3 sum(0.0);
     for (const glm::dvec3& w : L.weight) sum += w;
-    const glm::dvec3 scale = illuminant_white_xyz(S.scene.illuminant) / sum;
+    const glm::dvec3 scale = illuminant_white_xyz(plan.scene().illuminant) / sum;
     for (int i = 0; i < L.n; ++i) {
       L.weight[i] *= scale;
       L.moment[i] *= scale;
     }
   }
   for (double nm : L.nm) {
-    L.train.push_back(make_train(S.scene, S.compensator, nm));
+    L.train.push_back(make_train(plan.scene(), plan.compensator(), nm));
     std::array<double, 3> w, dw;
     modal_anchor_weights(nm, w.data(), dw.data());
     L.anchor_w.push_back(w);
@@ -69,33 +69,31 @@ SpectralLevel make_spectral_level(const MicroscopeSetup& S, int n) {
       L.steady[a] += L.weight[i] * L.anchor_w[i][a] + L.moment[i] * L.anchor_dw[i][a];
     }
   }
-  const bool any_exact = S.plate_model == PlateModel::Exact ||
-                         std::find(S.unit_exact.begin(), S.unit_exact.end(), 1) != S.unit_exact.end();
-  if (any_exact) {
+  if (plan.any_exact()) {
     L.prepared.resize(L.n);
     for (int i = 0; i < L.n; ++i)
-      for (std::size_t d = 0; d < S.domains.size(); ++d)
-        L.prepared[i].push_back(S.domains[d].crystal ? S.prepare(static_cast<int>(d), L.nm[i])
+      for (std::size_t d = 0; d < plan.domains().size(); ++d)
+        L.prepared[i].push_back(plan.domains()[d].crystal ? plan.prepare(static_cast<int>(d), L.nm[i])
                                                      : PreparedPlate{});
   }
   return L;
 }
 
-double unit_transmission(const MicroscopeSetup& S, const SpectralLevel& L, int u, int i) {
-  const EvalUnit& unit = S.units[u];
-  const OpticalDomain& dom = S.domains[unit.domain];
+double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& L, int u, int i) {
+  const EvalUnit& unit = plan.units()[u];
+  const OpticalDomain& dom = plan.domains()[unit.domain];
   const TrainState& train = L.train[i];
-  const int D = S.dirs_of(unit);
+  const int D = plan.dirs_of(unit);
   double t = 0.0;
   if (!dom.crystal || unit.thickness_um <= 0.0) {
     for (int d = 0; d < D; ++d)
-      t += jones_transmission(train, S.with_lenses(JonesMatrix::identity(), S.dir(unit, d)));
+      t += jones_transmission(train, plan.with_lenses(JonesMatrix::identity(), plan.dir(unit, d)));
     return t / D;
   }
-  PreparedPlate p = L.prepared.empty() ? S.prepare(unit.domain, L.nm[i]) : L.prepared[i][unit.domain];
+  PreparedPlate p = L.prepared.empty() ? plan.prepare(unit.domain, L.nm[i]) : L.prepared[i][unit.domain];
   p.thickness_um = unit.thickness_um;
   for (int d = 0; d < D; ++d)
-    t += jones_transmission(train, S.with_lenses(plate_jones(p, S.dir(unit, d)), S.dir(unit, d)));
+    t += jones_transmission(train, plan.with_lenses(plate_jones(p, plan.dir(unit, d)), plan.dir(unit, d)));
   t /= D;
   return std::isfinite(t) ? std::max(0.0, t) : 0.0;
 }
@@ -178,30 +176,30 @@ glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* 
   return xyz;
 }
 
-glm::dvec3 modal_unit_xyz(const MicroscopeSetup& S, const SpectralLevel& L, int u) {
-  if (!S.compensator.present && !L.monochromatic) {
+glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
+  if (!plan.compensator().present && !L.monochromatic) {
     constexpr int kChunk = 256;
     alignas(16) double va[kChunk + 1], vb[kChunk + 1];
     if (L.n <= kChunk) {
-      const EvalUnit& unit = S.units[u];
-      const int D = S.dirs_of(unit);
+      const EvalUnit& unit = plan.units()[u];
+      const int D = plan.dirs_of(unit);
       glm::dvec3 xyz(0.0);
       for (int d = 0; d < D; ++d)
-        xyz += modal_plain_xyz(S.terms[static_cast<std::size_t>(u) * S.dirs_per_unit + d], L, va, vb);
+        xyz += modal_plain_xyz(plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d], L, va, vb);
       xyz /= D;
       for (int k = 0; k < 3; ++k)
         if (!std::isfinite(xyz[k])) xyz[k] = 0.0;
       return xyz;
     }
   }
-  const EvalUnit& unit = S.units[u];
-  const int D = S.dirs_of(unit);
-  const bool comp = S.compensator.present;
+  const EvalUnit& unit = plan.units()[u];
+  const int D = plan.dirs_of(unit);
+  const bool comp = plan.compensator().present;
   const double two_pi = 6.283185307179586;
   const double h = L.band_nm;
   glm::dvec3 xyz(0.0);
   for (int d = 0; d < D; ++d) {
-    const ModalTerms& m = S.terms[static_cast<std::size_t>(u) * S.dirs_per_unit + d];
+    const ModalTerms& m = plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d];
     for (int i = 0; i < L.n; ++i) {
       const double* w = L.anchor_w[i].data();
       const double* dw = L.anchor_dw[i].data();
@@ -242,10 +240,10 @@ glm::dvec3 modal_unit_xyz(const MicroscopeSetup& S, const SpectralLevel& L, int 
 
 }  // namespace
 
-glm::dvec3 evaluate_unit(const MicroscopeSetup& S, const SpectralLevel& L, int u) {
-  if (!S.needs_exact(u)) return modal_unit_xyz(S, L, u);
+glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
+  if (!plan.needs_exact(u)) return modal_unit_xyz(plan, L, u);
   glm::dvec3 xyz(0.0);
-  for (int i = 0; i < L.n; ++i) xyz += L.weight[i] * unit_transmission(S, L, u, i);
+  for (int i = 0; i < L.n; ++i) xyz += L.weight[i] * unit_transmission(plan, L, u, i);
   return xyz;
 }
 

@@ -9,7 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/crystal/plate.h"
-#include "core/microscope/microscope_setup.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 
 namespace pmsim {
@@ -32,11 +32,11 @@ struct SpectralLevel {
   glm::dvec3 steady[3]{};
 };
 
-SpectralLevel make_spectral_level(const MicroscopeSetup& setup, int n);
+SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n);
 
 // Spectral transmittance of one unit at band i with the exact plate Jones matrix (band centre).
-double unit_transmission(const MicroscopeSetup& setup, const SpectralLevel& level, int unit, int band);
+double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& level, int unit, int band);
 // XYZ of one unit (Y = 1: the exposure reference); monochromatic: (T, T, T).
-glm::dvec3 evaluate_unit(const MicroscopeSetup& setup, const SpectralLevel& level, int unit);
+glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& level, int unit);
 
 }  // namespace pmsim

@@ -47,15 +47,21 @@ std::uint8_t linear_to_srgb8(double linear) {
 
 // CIE 15:2004 §8.2.1: L* = 116 f(Y/Yn) − 16, a* = 500 [f(X/Xn) − f(Y/Yn)],
 // b* = 200 [f(Y/Yn) − f(Z/Zn)], f(t) = t^(1/3) for t > (6/29)³, else (841/108)·t + 4/29.
+namespace {
+double cielab_f(double t) {
+  constexpr double eps = 216.0 / 24389.0;  // (6/29)^3
+  return t > eps ? std::cbrt(t) : (841.0 / 108.0) * t + 4.0 / 29.0;
+}
+double lightness_of_f(double fy) { return 116.0 * fy - 16.0; }
+}  // namespace
+
+double cielab_lightness(double Y_relative) { return lightness_of_f(cielab_f(Y_relative)); }
+
 glm::dvec3 xyz_to_lab(const glm::dvec3& xyz, const glm::dvec3& white_xyz) {
-  auto f = [](double t) {
-    constexpr double eps = 216.0 / 24389.0;  // (6/29)^3
-    return t > eps ? std::cbrt(t) : (841.0 / 108.0) * t + 4.0 / 29.0;
-  };
-  const double fx = f(xyz.x / white_xyz.x);
-  const double fy = f(xyz.y / white_xyz.y);
-  const double fz = f(xyz.z / white_xyz.z);
-  return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+  const double fx = cielab_f(xyz.x / white_xyz.x);
+  const double fy = cielab_f(xyz.y / white_xyz.y);
+  const double fz = cielab_f(xyz.z / white_xyz.z);
+  return {lightness_of_f(fy), 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
 // CIEDE2000 (CIE 142-2001), written as in Sharma, Wu & Dalal, Color Res. Appl. 30 (2005) 21–30,

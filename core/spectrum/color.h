@@ -13,6 +13,8 @@ double srgb_decode(double encoded);
 // Clips to [0,1] per channel in linear RGB, then encodes and rounds; NaN maps to 0.
 std::uint8_t linear_to_srgb8(double linear);
 
+// CIELAB lightness L* = 116 f(Y/Yn) − 16 (CIE 15:2004 §8.2.1) of a relative luminance Y/Yn.
+double cielab_lightness(double Y_relative);
 glm::dvec3 xyz_to_lab(const glm::dvec3& xyz, const glm::dvec3& white_xyz);
 double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2);
 

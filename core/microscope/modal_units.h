@@ -1,0 +1,29 @@
+#pragma once
+// The modal stage of an evaluation plan: for every unit and direction the plate's modal fit
+// (core/microscope/modal_fit.h) reduced to its interference terms in the polarizing train, and
+// which units the ExactnessCriteria send to the exact Jones matrix instead.
+#include <atomic>
+#include <optional>
+#include <vector>
+
+#include "core/microscope/modal_fit.h"
+#include "core/microscope/model_policy.h"
+
+namespace pmsim {
+
+class EvaluationPlan;
+
+struct ModalUnits {
+  std::vector<ModalTerms> terms;   // unit u, direction d at u*dirs_per_unit+d
+  int dirs_per_unit = 1;
+  std::vector<char> unit_exact;    // 1 = this unit needs the exact Jones matrix
+  bool radial_table = false;       // the fits came from a RadialModalTable
+};
+
+// Fits every unit of `plan` (its domains, view and lenses set) in parallel (TBB); nullopt when
+// `cancel` (may be null) is raised meanwhile. A conoscopic figure of one uniaxial domain with its
+// optic axis along the stage normal takes its fits from a radial table.
+std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const ExactnessCriteria& exact,
+                                          const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace pmsim

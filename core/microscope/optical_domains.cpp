@@ -1,0 +1,46 @@
+#include "core/microscope/optical_domains.h"
+
+#include <array>
+#include <numbers>
+
+
+namespace pmsim {
+
+namespace {
+
+glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+glm::dmat3 sample_orientation(const Crystal& c, const SampleSettings& s) {
+  if (c.symmetry() == CrystalSymmetry::Biaxial) return biaxial_orientation(vec(s.x_axis), vec(s.z_axis));
+  return uniaxial_orientation(vec(s.optic_axis));
+}
+
+}  // namespace
+
+OpticalDomains optical_domains(const Scene& scene) {
+  OpticalDomains out;
+  const double stage_rad = scene.stage_deg * std::numbers::pi / 180.0;
+  if (!scene.sample_in) {
+    out.domains.push_back({nullptr, glm::dmat3(1.0), scene.sample.thickness_um, "empty stage"});
+  } else if (scene.sample.type == SampleType::Section) {
+    out.section = load_section(scene.sample.section);
+    for (int d = 0; d < out.section->domain_count(); ++d) {
+      const SectionGrain& g = out.section->grain_of_domain(d);
+      out.domains.push_back({g.crystal, rotate_stage(out.section->orientation_of_domain(d), stage_rad),
+                             scene.sample.thickness_um, g.mineral});
+    }
+  } else {
+    const Crystal* c;
+    if (scene.sample.crystal) {
+      out.custom_crystal = std::make_shared<Crystal>(crystal_from_indices(*scene.sample.crystal));
+      c = out.custom_crystal.get();
+    } else {
+      c = &find_mineral(scene.sample.mineral);
+    }
+    out.domains.push_back({c, rotate_stage(sample_orientation(*c, scene.sample), stage_rad),
+                           scene.sample.thickness_um, scene.sample.crystal ? "custom crystal" : c->name()});
+  }
+  return out;
+}
+
+}  // namespace pmsim
