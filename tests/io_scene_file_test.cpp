@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 
 using namespace pmsim;
@@ -62,7 +62,7 @@ TEST(SceneFile, EveryKeyRoundTripsThroughSaveAndLoad) {
   s.sample.section = "basalt";
   s.compensator = Compensator::QuartzWedge;
   s.compensator_position = 0.25;
-  s.render = {320, 200, 4, 40, 0.0, 0.8, "modal"};
+  s.render = {320, 200, 4, 40, 0.0, 0.8, RenderStrategy::Modal};
   s.optics = {LensModel::Ideal, 3, true};
   const std::string path = temp_dir() + "/round_trip.json";
   save_scene_file(s, path);

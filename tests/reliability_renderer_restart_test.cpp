@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/render/progressive_renderer.h"
 
 namespace pmsim {

@@ -186,8 +186,8 @@ TEST(AbsorbingCrystal, AutoUsesExactJonesMatricesInParallelLight) {
     s.stage_deg = 30.0;
     s.analyzer_in = analyzer;
     Scene exact = s, modal = s;
-    exact.render.strategy = "exact";
-    modal.render.strategy = "modal";
+    exact.render.strategy = RenderStrategy::Exact;
+    modal.render.strategy = RenderStrategy::Modal;
     const RenderImage a = ProgressiveRenderer::render(s, 1);
     const RenderImage e = ProgressiveRenderer::render(exact, 1);
     const RenderImage m = ProgressiveRenderer::render(modal, 1);

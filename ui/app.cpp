@@ -10,7 +10,7 @@
 #include <imgui.h>
 
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/scene_check.h"
 #include "ui/asset_lists.h"

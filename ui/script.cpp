@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "ui/shortcuts.h"
 
 namespace pmsim::ui {

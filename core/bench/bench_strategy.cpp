@@ -88,7 +88,7 @@ StrategyResult run_bench_side(const Scene& scene, const BenchStrategy& st) {
   StrategyResult r;
   const auto t0 = Clock::now();
   Scene sc = scene;
-  sc.render.strategy = "exact";  // no modal fit: the set-up only provides geometry
+  sc.render.strategy = RenderStrategy::Exact;  // no modal fit: the set-up only provides geometry
   const auto S = build_setup(sc);
   std::vector<glm::dvec3> units(S->units.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64), [&](const tbb::blocked_range<std::size_t>& b) {
@@ -182,7 +182,7 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
 
 StrategyResult run_strategy(const Scene& scene, const BenchStrategy& st, int threads) {
   Scene sc = scene;
-  for (const std::string& s : st.settings) apply_setting(sc, s);
+  apply_settings(sc, st.settings);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   StrategyResult r;
   switch (st.kind) {

@@ -157,7 +157,7 @@ void objective_paths(const Optics& O, const glm::dvec3& k, std::vector<Objective
 StrategyResult render_physical_lens_model(const Scene& scene_in) {
   const auto t0 = std::chrono::steady_clock::now();
   Scene scene = scene_in;
-  scene.render.strategy = "exact";  // geometry only: the modes are fitted here, per unit
+  scene.render.strategy = RenderStrategy::Exact;  // geometry only: the modes are fitted here, per unit
   if (scene.render.wavelengths <= 0) scene.render.wavelengths = 32;
   const auto S = build_setup(scene);
   std::vector<std::array<PreparedPlate, 3>> anchors(S->domains.size());

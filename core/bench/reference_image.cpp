@@ -165,7 +165,7 @@ void evaluate_direction(const MicroscopeSetup& S, const SpectralLevel& L, const 
 
 Scene reference_scene(const Scene& scene) {
   Scene r = scene;
-  r.render.strategy = "exact";
+  r.render.strategy = RenderStrategy::Exact;
   r.render.wavelengths = kReferenceBands;
   r.render.single_wavelength_nm = 0.0;
   if (r.sample_in && r.sample.type != SampleType::Plate) r.render.spp = std::max(r.render.spp, 16);
@@ -250,7 +250,7 @@ ReferenceImage converged_physical_reference(const Scene& scene, const std::strin
   rs.optics.lens_depth = 5;
   rs.optics.schlick = false;
   rs.render.wavelengths = 128;
-  rs.render.strategy = "modal";
+  rs.render.strategy = RenderStrategy::Modal;
   const std::string path = cache_path(cache_dir, "physical-lens-model:" + scene_to_json(rs).dump());
   ReferenceImage R;
   if (try_cache(path, rs, R)) return R;
@@ -259,7 +259,7 @@ ReferenceImage converged_physical_reference(const Scene& scene, const std::strin
   rs.render.wavelengths = 64;
   StrategyResult half = render_physical_lens_model(rs);
   Scene geo = rs;
-  geo.render.strategy = "exact";
+  geo.render.strategy = RenderStrategy::Exact;
   R.width = rs.render.width;
   R.height = rs.render.height;
   R.xyz = std::move(full.xyz);

@@ -9,7 +9,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 
 namespace pmsim {
 
@@ -152,27 +153,28 @@ double optic_angle_2v_rad(double nalpha, double nbeta, double ngamma) {
 }
 
 Crystal crystal_from_indices(const CrystalIndices& c) {
-  auto fmt = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return std::string(buf);
-  };
-  auto check = [&](const char* key, double n) {
-    if (!std::isfinite(n) || !(n > 1.0) || n > 5.0)
-      throw InputError("", std::string("sample.crystal.") + key, fmt(n),
-                       "a refractive index must be finite and between 1 and 5");
+  auto check = [](const char* key, double n) {
+    try {
+      check_refractive_index(n);
+    } catch (const BadValue& b) {
+      throw InputError("", key, number_text(n), b.why);
+    }
   };
   if (c.uniaxial) {
     check("no", c.no);
     check("ne", c.ne);
-    return Crystal::uniaxial_constant("custom uniaxial", c.no, c.ne);
+  } else {
+    check("nalpha", c.nalpha);
+    check("nbeta", c.nbeta);
+    check("ngamma", c.ngamma);
+    try {
+      check_biaxial_order(c.nalpha, c.nbeta, c.ngamma);
+    } catch (const BadValue& b) {
+      throw InputError("", "", number_text(c.nalpha) + ", " + number_text(c.nbeta) + ", " +
+                       number_text(c.ngamma), b.why);
+    }
   }
-  check("nalpha", c.nalpha);
-  check("nbeta", c.nbeta);
-  check("ngamma", c.ngamma);
-  if (!(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma))
-    throw InputError("", "sample.crystal", fmt(c.nalpha) + ", " + fmt(c.nbeta) + ", " + fmt(c.ngamma),
-                     "biaxial indices must satisfy nalpha <= nbeta <= ngamma");
+  if (c.uniaxial) return Crystal::uniaxial_constant("custom uniaxial", c.no, c.ne);
   return Crystal::biaxial_constant("custom biaxial", c.nalpha, c.nbeta, c.ngamma);
 }
 

@@ -23,18 +23,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/crystal/crystal.h"
-#include "core/io/input_error.h"
+#include "core/base/asset_locator.h"
+#include "core/base/input_error.h"
+#include "core/base/text.h"
 
 namespace pmsim {
 namespace {
 
 using nlohmann::json;
 
-std::string lower(std::string_view s) {
-  std::string r(s);
-  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return std::tolower(c); });
-  return r;
-}
 
 struct Reader {
   const std::string& file;
@@ -219,11 +216,7 @@ Crystal load_mineral_file(const std::string& path) {
 
 namespace {
 
-std::filesystem::path mineral_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env)
-    return std::filesystem::path(env) / "minerals";
-  return std::filesystem::path(PMSIM_ASSET_DIR) / "minerals";
-}
+std::filesystem::path mineral_dir() { return std::filesystem::path(asset_dir()) / "minerals"; }
 
 struct Library {
   std::map<std::string, Crystal> by_name;  // lower-case name → crystal (node-stable references)
@@ -242,7 +235,7 @@ const Library& library() {
     std::sort(files.begin(), files.end());
     for (const auto& f : files) {
       Crystal c = load_mineral_file(f.string());
-      const std::string key = lower(c.name());
+      const std::string key = lower_case(c.name());
       l.by_name.emplace(key, std::move(c));
     }
     return l;
@@ -254,11 +247,11 @@ const Library& library() {
 
 const Crystal& find_mineral(std::string_view name) {
   const Library& lib = library();
-  const auto it = lib.by_name.find(lower(name));
+  const auto it = lib.by_name.find(lower_case(name));
   if (it == lib.by_name.end()) {
     std::string known;
     for (const auto& [k, v] : lib.by_name) known += (known.empty() ? "" : ", ") + k;
-    throw InputError("", "sample.mineral", std::string(name), "unknown mineral (known: " + known + ")");
+    throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
   }
   return it->second;
 }

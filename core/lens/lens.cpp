@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {

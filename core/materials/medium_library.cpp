@@ -10,7 +10,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/io/input_error.h"
+#include "core/base/asset_locator.h"
+#include "core/base/input_error.h"
+#include "core/base/text.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {
@@ -18,12 +20,6 @@ namespace pmsim {
 namespace {
 
 using nlohmann::json;
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 // Reads a material file's keys with the file and key named in every error.
 class Reader {
@@ -110,7 +106,7 @@ Medium load_medium_file(const std::string& path) {
   const std::string name = r.string("name");
   r.string("source");  // every data file names where its numbers come from
   const std::string model = r.string("model");
-  const bool gas = lower(name) == "air" || lower(name) == "vacuum";
+  const bool gas = lower_case(name) == "air" || lower_case(name) == "vacuum";
 
   Medium m;
   std::vector<double> sellmeier_b, sellmeier_c;
@@ -245,11 +241,6 @@ Medium load_medium_file(const std::string& path) {
 
 namespace {
 
-std::string asset_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env != nullptr && *env != '\0') return env;
-  return PMSIM_ASSET_DIR;
-}
-
 struct Library {
   std::map<std::string, Medium> by_lower_name;
   std::vector<std::string> names;
@@ -270,7 +261,7 @@ Library load_library() {
   Library lib;
   for (const auto& f : files) {
     Medium m = load_medium_file(f.string());
-    const std::string key = lower(m.name());
+    const std::string key = lower_case(m.name());
     if (lib.by_lower_name.count(key)) {
       throw InputError(f.string(), "name", m.name(), "a medium of this name is already defined");
     }
@@ -290,7 +281,7 @@ const Library& library() {
 
 const Medium& find_medium(std::string_view name) {
   const Library& lib = library();
-  const auto it = lib.by_lower_name.find(lower(name));
+  const auto it = lib.by_lower_name.find(lower_case(name));
   if (it == lib.by_lower_name.end()) {
     std::string known;
     for (const auto& n : lib.names) known += (known.empty() ? "" : ", ") + n;

@@ -25,7 +25,7 @@ FigureInfo describe_figure(const Scene& scene_in) {
   Scene scene = scene_in;
   scene.render.width = scene.render.height = 8;
   scene.render.spp = 1;
-  scene.render.strategy = "exact";
+  scene.render.strategy = RenderStrategy::Exact;
   const auto S = build_setup(scene);
   const int dom = std::max(0, domain_at_image_point(*S, 0.5, 0.5));
   const OpticalDomain& D = S->domains[dom];

@@ -458,10 +458,10 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
   bool active = false;
   for (const OpticalDomain& d : S->domains)
     if (d.crystal && d.crystal->optically_active()) active = true;
-  const std::string& strat = scene.render.strategy;
+  const RenderStrategy strat = scene.render.strategy;
   const bool single = scene.render.single_wavelength_nm > 0;
-  const bool hybrid = strat == "auto" && active && !single;
-  S->plate_model = (strat == "exact" || single) ? PlateModel::Exact : PlateModel::Modal;
+  const bool hybrid = strat == RenderStrategy::Auto && active && !single;
+  S->plate_model = (strat == RenderStrategy::Exact || single) ? PlateModel::Exact : PlateModel::Modal;
   report << "; plate: "
          << (S->plate_model == PlateModel::Exact
                  ? (single ? "exact Jones matrix (single wavelength)" : "exact Jones matrix per wavelength")
@@ -527,7 +527,7 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
     // anchor wavelengths, which left the biotite grains of the granite at mean ΔE00 0.7 where
     // exact Jones matrices per band reach 0.1. In parallel light a grain is one evaluation for
     // the whole field, so exactness costs nothing worth saving; per-pixel figures keep the fit.
-    const bool exact_absorbing = strat == "auto" && !single && field_units;
+    const bool exact_absorbing = strat == RenderStrategy::Auto && !single && field_units;
     std::atomic<bool> stop{false};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, S->units.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {

@@ -19,7 +19,7 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
   scene.render.width = std::max(1, static_cast<int>(std::lround(W / shrink)));
   scene.render.height = std::max(1, static_cast<int>(std::lround(H / shrink)));
   scene.render.spp = 1;
-  scene.render.strategy = "exact";
+  scene.render.strategy = RenderStrategy::Exact;
   const auto S = build_setup(scene);
   PixelProbe p;
   x_frac = std::clamp(x_frac, 0.0, 1.0);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "core/crystal/crystal_indices.h"  // CrystalIndices: sample.crystal
 #include "core/spectrum/illuminant.h"
 
 namespace pmsim {
@@ -22,12 +23,9 @@ enum class SampleType { Plate, Wedge, Section };           // sample.type: plate
 enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
 // illuminant: D65|A is pmsim::Illuminant (core/spectrum/illuminant.h)
 enum class LensModel { Auto, Ideal, Physical };            // optics.lens_model: auto|ideal|physical
+enum class RenderStrategy { Auto, Modal, Exact };          // render.strategy: auto|modal|exact
 
-struct CrystalIndices {          // sample.crystal: {"no":..,"ne":..} or {"nalpha":..,"nbeta":..,"ngamma":..}
-  bool uniaxial = true;
-  double no = 1.544, ne = 1.553;                     // uniaxial
-  double nalpha = 1.5, nbeta = 1.5, ngamma = 1.5;    // biaxial
-};
+// sample.crystal is CrystalIndices (core/crystal/crystal_indices.h)
 
 struct ObjectiveSettings {
   double magnification = 10.0;   // objective.magnification
@@ -57,7 +55,7 @@ struct RenderSettings {
   int wavelengths = 0;                         // render.wavelengths (0: until converged)
   double single_wavelength_nm = 0.0;           // render.single_wavelength_nm (0: white light)
   double tolerance_de2000 = 0.5;               // render.tolerance (stop when the estimate is below)
-  std::string strategy = "auto";               // render.strategy: auto|modal|exact (core/microscope/scene_check.h)
+  RenderStrategy strategy = RenderStrategy::Auto;        // render.strategy: auto|modal|exact
 };
 
 struct OpticsSettings {

@@ -16,10 +16,4 @@ inline constexpr long long kMaxRenderPixels = 8192LL * 8192LL;
 // count exceeds kMaxRenderPixels.
 void check_pixel_count(const Scene& scene, const std::string& file, const char* key);
 
-// render.strategy: "auto" (the cheapest accurate plate model per scene), "modal" (eigenmodes fitted
-// across the spectrum, band-averaged interference terms), "exact" (plate Jones matrix at every
-// wavelength sample, plain midpoint quadrature: the paper's uniform sampling).
-bool render_strategy_known(const std::string& strategy);
-std::string render_strategy_list();
-
 }  // namespace pmsim

@@ -9,7 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {

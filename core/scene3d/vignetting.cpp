@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/lens/lens_tracer.h"
 
 namespace pmsim {

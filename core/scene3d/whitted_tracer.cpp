@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 #include "core/optics/beer_lambert.h"
 #include "core/optics/interaction.h"
