@@ -11,6 +11,7 @@
 
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
+#include "core/optics/cauchy.h"
 
 namespace pmsim {
 
@@ -24,8 +25,7 @@ double IndexDispersion::n(double wavelength_nm) const {
       // Ghosh 1999, Opt. Commun. 163, 95, eq. (3): n² = A + B/(1 − C/λ²) + D/(1 − E/λ²).
       return std::sqrt(A + B / (1.0 - C / l2) + D / (1.0 - E / l2));
     case Model::Cauchy:
-      // Cauchy: n = A + B/λ² + C/λ⁴.
-      return A + B / l2 + C / (l2 * l2);
+      return cauchy_index(A, B, C, l);  // λ in µm
   }
   return A;
 }

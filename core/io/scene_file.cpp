@@ -175,8 +175,11 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
        [](const Scene& s) -> json { return s.optics.lens_depth; }},
-      {"optics.schlick", [](Scene& s, const json& v) { s.optics.schlick = as_bool(v); },
-       [](const Scene& s) -> json { return s.optics.schlick; }},
+      {"optics.schlick",  // a bool in files and --set: true is the Schlick approximation
+       [](Scene& s, const json& v) {
+         s.optics.fresnel = as_bool(v) ? FresnelModel::Schlick : FresnelModel::Exact;
+       },
+       [](const Scene& s) -> json { return s.optics.fresnel == FresnelModel::Schlick; }},
   };
   return k;
 }

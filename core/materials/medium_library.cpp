@@ -11,7 +11,9 @@
 #include <stdexcept>
 
 #include "core/base/asset_locator.h"
+#include "core/base/asset_names.h"
 #include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 #include "core/base/text.h"
 #include "core/materials/medium.h"
 
@@ -21,16 +23,14 @@ namespace {
 
 using nlohmann::json;
 
-// Reads a material file's keys with the file and key named in every error.
+// Reads a material file's keys with the file and key named in every error; values convert with
+// the shared rules of core/base/json_reader.h (the same messages as every other file type).
 class Reader {
  public:
   Reader(const std::string& file, const json& root) : file_(file), root_(root) {}
 
   [[noreturn]] void fail(const std::string& key, const json& value, const std::string& why) const {
-    const std::string text = value.is_null()     ? std::string()
-                             : value.is_string() ? value.get<std::string>()
-                                                 : value.dump();
-    throw InputError(file_, key, text, why);
+    throw InputError(file_, key, value.is_null() ? std::string() : shown(value), why);
   }
 
   const json& require(const std::string& key) const {
@@ -45,10 +45,11 @@ class Reader {
   }
 
   double number(const json& v, const std::string& key) const {
-    if (!v.is_number()) fail(key, v, "expected a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(key, v, "expected a finite number");
-    return d;
+    try {
+      return number_value(v);
+    } catch (const BadValue& b) {
+      fail(key, v, b.why);
+    }
   }
   double number(const std::string& key) const { return number(require(key), key); }
 
@@ -87,16 +88,7 @@ const std::set<std::string> kKnownKeys = {
 }  // namespace
 
 Medium load_medium_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "", "cannot open material file");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  } catch (const std::exception& e) {  // read errors, e.g. a folder given as the file
-    throw InputError(path, "", "", std::string("cannot read the material file: ") + e.what());
-  }
+  const json root = read_json_file(path, "material file");
   if (!root.is_object()) throw InputError(path, "", "", "expected a JSON object");
   const Reader r(path, root);
   for (const auto& [key, value] : root.items()) {
@@ -259,12 +251,11 @@ Library load_library() {
   }
   std::sort(files.begin(), files.end());
   Library lib;
+  AssetNames defined("medium");
   for (const auto& f : files) {
     Medium m = load_medium_file(f.string());
     const std::string key = lower_case(m.name());
-    if (lib.by_lower_name.count(key)) {
-      throw InputError(f.string(), "name", m.name(), "a medium of this name is already defined");
-    }
+    defined.add(m.name(), f.string());
     lib.names.push_back(m.name());
     lib.by_lower_name.emplace(key, std::move(m));
   }

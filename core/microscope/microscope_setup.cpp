@@ -472,11 +472,11 @@ std::shared_ptr<const MicroscopeSetup> build_setup(const Scene& scene,
   const bool oblique = cono;
   char buf[160];
   if (scene.optics.lens_model == LensModel::Physical) {
-    S->lenses = &lens_polarization_table(scene.optics.schlick);
-    report << "; condenser, objective: physical SML lenses (Fresnel " << (scene.optics.schlick ? "Schlick" : "exact")
+    S->lenses = &lens_polarization_table(scene.optics.fresnel);
+    report << "; condenser, objective: physical SML lenses (Fresnel " << (scene.optics.fresnel == FresnelModel::Schlick ? "Schlick" : "exact")
            << ", depth-0 path)";
   } else if (scene.optics.lens_model == LensModel::Auto && oblique) {
-    const LensPolarizationTable& table = lens_polarization_table(scene.optics.schlick);
+    const LensPolarizationTable& table = lens_polarization_table(scene.optics.fresnel);
     const double diff = lens_model_difference(*S, table);
     if (diff > scene.render.tolerance_de2000) {
       S->lenses = &table;

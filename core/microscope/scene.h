@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/crystal/crystal_indices.h"  // CrystalIndices: sample.crystal
+#include "core/optics/interface_model.h"   // FresnelModel: optics.schlick
 #include "core/spectrum/illuminant.h"
 
 namespace pmsim {
@@ -61,7 +62,7 @@ struct RenderSettings {
 struct OpticsSettings {
   LensModel lens_model = LensModel::Auto;      // optics.lens_model
   int lens_depth = 1;                          // optics.lens_depth (dT for physical lenses)
-  bool schlick = false;                        // optics.schlick (approximate Fresnel)
+  FresnelModel fresnel = FresnelModel::Exact;  // optics.schlick: true|false (true: Schlick, approximate)
 };
 
 struct Scene {
