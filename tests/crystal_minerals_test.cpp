@@ -167,9 +167,9 @@ TEST(MineralFile, BadInputNamesFileKeyAndValue) {
   const Case cases[] = {
       {R"({"name":"x","symmetry":"uniaxial","indices":{"no":1.5,"ne":1.6}})", "source", ""},
       {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":0.5,"ne":1.6}})", "indices.no", "0.5"},
-      {R"({"name":"x","symmetry":"trigonal","source":"s","indices":{}})", "symmetry", "\"trigonal\""},
+      {R"({"name":"x","symmetry":"trigonal","source":"s","indices":{}})", "symmetry", "trigonal"},  // strings shown unquoted, as in every file type
       {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":{"model":"magic"},"ne":1.6}})",
-       "indices.no.model", "\"magic\""},
+       "indices.no.model", "magic"},
       {R"({"name":"x","symmetry":"biaxial","source":"s","indices":{"nalpha":1.6,"nbeta":1.5,"ngamma":1.7}})",
        "indices", ""},
       {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":1.5,"ne":1.6},
