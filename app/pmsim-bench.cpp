@@ -12,7 +12,7 @@
 #include "core/bench/bench_run.h"
 #include "core/bench/frontier_plot.h"
 #include "core/io/atomic_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 
 namespace {
 

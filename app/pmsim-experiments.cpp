@@ -17,8 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "core/base/asset_locator.h"
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/scene3d/experiment_images.h"
 #include "core/scene3d/pinhole_camera.h"
 #include "core/scene3d/ray_cone.h"
@@ -38,11 +39,6 @@ struct Common {
   std::string out_dir = "experiments-out";
   bool quick = false;
 };
-
-std::string asset_dir() {
-  if (const char* e = std::getenv("PMSIM_ASSETS")) return e;
-  return PMSIM_ASSET_DIR;
-}
 
 nlohmann::json load_json(const std::string& path) {
   std::ifstream in(path);

@@ -18,7 +18,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/sample_source.h"
 #include "core/render/progressive_renderer.h"
@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
                                 "pmsim-render renders \"microscope\" and \"scene3d\" scenes");
       pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
       for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
-      for (const std::string& s : args.sets) pmsim::apply_setting(scene, s);
+      pmsim::apply_settings(scene, args.sets);
       const bool tty = ::isatty(STDERR_FILENO);
       pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
           scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);

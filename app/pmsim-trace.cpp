@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 
 using namespace pmsim;
@@ -63,7 +63,7 @@ TEST(SceneFile, EveryKeyRoundTripsThroughSaveAndLoad) {
   s.compensator = Compensator::QuartzWedge;
   s.compensator_position = 0.25;
   s.render = {320, 200, 4, 40, 0.0, 0.8, RenderStrategy::Modal};
-  s.optics = {LensModel::Ideal, 3, true};
+  s.optics = {LensModel::Ideal, 3, FresnelModel::Schlick};
   const std::string path = temp_dir() + "/round_trip.json";
   save_scene_file(s, path);
   const Scene back = load_scene_file(path);

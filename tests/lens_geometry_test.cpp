@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/lens/lens.h"
 
 using namespace pmsim;

@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "core/crystal/crystal.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/microscope/figure_info.h"
 #include "core/microscope/pixel_probe.h"
 

@@ -231,6 +231,33 @@ TEST_F(RenderCli, ParallelBiaxialAxesExitTwoInsteadOfAborting) {
   fs::remove(par);
 }
 
+TEST_F(RenderCli, PerpendicularAxesSetTogetherRenderInEitherOrder) {
+  // Every --set was validated against the half-changed scene, so turning the biaxial frame
+  // (each new axis parallel to the other's old value) failed whatever the order.
+  for (const auto& [first, second] : {std::pair{"sample.x_axis=[0,0,1]", "sample.z_axis=[1,0,0]"},
+                                      std::pair{"sample.z_axis=[1,0,0]", "sample.x_axis=[0,0,1]"}}) {
+    SCOPED_TRACE(first);
+    const CommandResult r = render({"--set", "sample.mineral=muscovite", "--set", first, "--set", second});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "out.png"));
+    fs::remove(dir_ / "out.png");
+  }
+}
+
+TEST_F(RenderCli, AFileAndSetObeyTheSameRules) {
+  // A sample of the wrong type was warned as an unknown key and rendered; oblique biaxial axes
+  // rendered from a file although the same values are refused on the command line.
+  const std::string str = dir_.file("str.json", R"({"sample":"quartz"})");
+  expect_bad({str}, {"str.json", "sample", "quartz"});
+  const std::string oblique = dir_.file("oblique.json",
+      R"({"sample":{"mineral":"muscovite","x_axis":[1,0,0.5],"z_axis":[0,0,1]}})");
+  expect_bad({oblique}, {"oblique.json", "sample.x_axis", "[1,0,0.5]"});
+  expect_bad({"--set", "sample.mineral=muscovite", "--set", "sample.x_axis=[1,0,0.5]"},
+             {"command line", "sample.x_axis", "[1,0,0.5]"});
+  fs::remove(str);
+  fs::remove(oblique);
+}
+
 TEST_F(RenderCli, HugeImagesAreRefusedBeforeAnyAllocation) {
   // 100 000² pixels would need ~10¹¹ bytes; it must be a clean exit 2, not an OOM kill.
   expect_bad({"--no-small", "--set", "render.width=100000", "--set", "render.height=100000"},

@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/render/progressive_renderer.h"
 
 namespace pmsim {

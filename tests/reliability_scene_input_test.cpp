@@ -4,6 +4,7 @@
 // default — and a rejected --set must leave the scene as it was (the UI keeps the last good state).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -75,6 +76,30 @@ TEST(SceneFileInput, BiaxialAxesMustNotBeParallel) {
   ScratchDir d;
   EXPECT_INPUT_ERROR(load(d, R"({"sample":{"mineral":"muscovite","x_axis":[0,0,1],"z_axis":[0,0,2]}})"),
                      "sample.x_axis", "");
+}
+
+TEST(SceneFileInput, BiaxialAxesMustBePerpendicular) {
+  // x_axis (nα) ⟂ z_axis (nγ) by definition; an oblique pair rendered silently (the renderer kept
+  // only x_axis's part ⟂ z_axis) while --set refused nothing either: both now refuse it.
+  ScratchDir d;
+  EXPECT_INPUT_ERROR(load(d, R"({"sample":{"mineral":"muscovite","x_axis":[1,0,0.5],"z_axis":[0,0,1]}})"),
+                     "sample.x_axis", "[1,0,0.5]");
+  Scene s;
+  EXPECT_INPUT_ERROR(apply_setting(s, "sample.x_axis=[1,0,0.5]"), "sample.x_axis", "[1,0,0.5]");
+  // The tolerance is |x̂·ẑ| ≤ 1e-6: cos = 1e-7 (rounding of hand-written axes) passes, 1e-5 not.
+  EXPECT_NO_THROW(load(d, R"({"sample":{"x_axis":[1,0,1e-7],"z_axis":[0,0,1]}})"));
+  EXPECT_INPUT_ERROR(load(d, R"({"sample":{"x_axis":[1,0,1e-5],"z_axis":[0,0,1]}})"), "sample.x_axis", "");
+}
+
+TEST(SceneFileInput, AGroupOfTheWrongTypeIsAnError) {
+  // "sample": "quartz" was warned as an unknown key and the default sample rendered.
+  ScratchDir d;
+  std::vector<std::string> warnings;
+  EXPECT_INPUT_ERROR(load(d, R"({"sample":"quartz"})", &warnings), "sample", "quartz");
+  for (const char* group : {"objective", "condenser", "render", "optics"}) {
+    SCOPED_TRACE(group);
+    EXPECT_INPUT_ERROR(load(d, std::string("{\"") + group + "\": 5}"), group, "5");
+  }
 }
 
 TEST(SceneFileInput, NumbersBeyondDoubleRangeAreInputErrors) {
@@ -195,6 +220,28 @@ TEST(SetOption, BadValuesNameKeyAndValueAndKeepTheLastGoodScene) {
   Scene s;
   EXPECT_INPUT_ERROR(apply_setting(s, "stage_deg"), "stage_deg", "");  // no '='
   EXPECT_INPUT_ERROR(apply_setting(s, "=5"), "=5", "");
+}
+
+TEST(SetOption, SettingsValidOnlyTogetherAreCheckedOnceAllApply) {
+  // x_axis = [0,0,1] is parallel to the default z_axis and z_axis = [1,0,0] to the default
+  // x_axis: each alone is refused, together (in either order) they are a valid frame.
+  for (const std::vector<std::string>& order :
+       {std::vector<std::string>{"sample.x_axis=[0,0,1]", "sample.z_axis=[1,0,0]"},
+        std::vector<std::string>{"sample.z_axis=[1,0,0]", "sample.x_axis=[0,0,1]"}}) {
+    SCOPED_TRACE(order.front());
+    Scene s;
+    s.sample.mineral = "muscovite";
+    ASSERT_NO_THROW(apply_settings(s, order));
+    EXPECT_EQ(s.sample.x_axis, (std::array<double, 3>{0, 0, 1}));
+    EXPECT_EQ(s.sample.z_axis, (std::array<double, 3>{1, 0, 0}));
+  }
+  // A single setting is still validated at once (the UI's --set keeps the scene consistent), and
+  // a refused list changes nothing, not even the settings before the bad one.
+  Scene s;
+  const nlohmann::json before = scene_to_json(s);
+  EXPECT_INPUT_ERROR(apply_setting(s, "sample.x_axis=[0,0,1]"), "sample.x_axis", "[0,0,1]");
+  EXPECT_INPUT_ERROR(apply_settings(s, {"stage_deg=10", "objective.na=2"}), "objective.na", "2");
+  EXPECT_EQ(scene_to_json(s), before);
 }
 
 TEST(SetOption, AnImageTooLargeForMemoryIsRefused) {

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 
 namespace pmsim::reliability {
 

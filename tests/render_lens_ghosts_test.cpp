@@ -48,7 +48,7 @@ double mean_de(const RenderImage& a, const RenderImage& b) {
 }  // namespace
 
 TEST(LensGhosts, TwoInternalReflectionsCarryAboutRSquaredOfTheLight) {
-  const LensGhostTable& t = lens_ghost_table(2, false);
+  const LensGhostTable& t = lens_ghost_table(2, FresnelModel::Exact);
   // Axial transmission of the lens: two faces, (1 − R)² ≈ 0.916 for n = 1.5185 (no absorption
   // to speak of over 11 mm of N-BK7: internal transmittance > 0.999).
   EXPECT_NEAR(t.axial_intensity, 0.916, 0.005);
@@ -70,7 +70,7 @@ TEST(LensGhosts, TwoInternalReflectionsCarryAboutRSquaredOfTheLight) {
   }
   EXPECT_GT(checked, 100);  // one depth-2 path per direction at least
   // dT = 1: no forward ghost exists (one internal reflection sends light back to the specimen).
-  const LensGhostTable& t1 = lens_ghost_table(1, false);
+  const LensGhostTable& t1 = lens_ghost_table(1, FresnelModel::Exact);
   for (const auto& v : t1.paths) EXPECT_TRUE(v.empty());
 }
 
@@ -113,7 +113,7 @@ TEST(LensGhosts, GhostsChangeTheFigureSlightlyAndNeverAddEnergy) {
   const auto plan = compile_evaluation_plan(e);
   const LensGhostImage g = lens_ghost_image(*plan);
   const RenderImage img = ProgressiveRenderer::render(e, 1);
-  const double tau4 = std::pow(lens_ghost_table(3, false).axial_intensity, 2.0);
+  const double tau4 = std::pow(lens_ghost_table(3, FresnelModel::Exact).axial_intensity, 2.0);
   double direct = 0.0, lit = 0.0;
   for (std::size_t i = 0; i + 1 < plan->pixel_offset().size(); ++i)
     if (plan->pixel_offset()[i + 1] > plan->pixel_offset()[i]) {

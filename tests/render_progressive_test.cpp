@@ -8,7 +8,7 @@
 #include <cmath>
 #include <thread>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/scene3d/scene3d_description.h"
 #include "core/scene3d/scene3d_world.h"
 #include "core/scene3d/vignetting.h"

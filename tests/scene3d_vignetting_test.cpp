@@ -5,7 +5,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/scene3d/vignetting.h"
 
 namespace pmsim {

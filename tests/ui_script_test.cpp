@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "ui/headless_driver.h"
 #include "ui/script.h"

@@ -10,7 +10,8 @@
 #include <imgui.h>
 
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/units.h"  // kPi
 #include "core/io/scene_file.h"
 #include "core/microscope/scene_check.h"
 #include "ui/asset_lists.h"
@@ -19,7 +20,6 @@
 namespace pmsim::ui {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Objectives of the brief, in the order of the 1…4 shortcuts.
 constexpr struct { double magnification, na; } kObjectives[] = {

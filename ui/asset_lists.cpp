@@ -7,11 +7,6 @@
 
 namespace pmsim::ui {
 
-std::string asset_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env) return env;
-  return PMSIM_ASSET_DIR;
-}
-
 std::vector<std::string> list_asset_stems(const std::string& subdir, const std::string& extension) {
   namespace fs = std::filesystem;
   std::vector<std::string> stems;

@@ -4,9 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "core/base/asset_locator.h"  // pmsim::asset_dir()
+
 namespace pmsim::ui {
 
-std::string asset_dir();
 // Stems of the files in assets/<subdir> ending in `extension`, sorted; empty if no such folder.
 std::vector<std::string> list_asset_stems(const std::string& subdir, const std::string& extension);
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "ui/asset_lists.h"
 #include "ui/headless_driver.h"
@@ -126,7 +126,7 @@ int pmsim_main(int argc, char** argv) {
       scene = load_scene_file(scene_file, &warnings);
       for (const auto& w : warnings) std::cerr << "pmsim: warning: " << w << "\n";
     }
-    for (const auto& s : o.sets) apply_setting(scene, s);
+    apply_settings(scene, o.sets);
     validate_scene(scene, scene_file);
     if (!o.script.empty()) script = load_script(o.script);
   } catch (const InputError& e) {

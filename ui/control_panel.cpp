@@ -244,7 +244,11 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("auto: per element the cheapest model whose error stays within tolerance");
   changed |= ImGui::SliderInt("Lens depth dT", &o.lens_depth, 0, 4);
-  changed |= ImGui::Checkbox("Schlick Fresnel", &o.schlick);
+  bool schlick = o.fresnel == FresnelModel::Schlick;
+  if (ImGui::Checkbox("Schlick Fresnel", &schlick)) {
+    o.fresnel = schlick ? FresnelModel::Schlick : FresnelModel::Exact;
+    changed = true;
+  }
   ImGui::Separator();
   changed |= ImGui::SliderInt("Wavelengths", &r.wavelengths, 0, 128, r.wavelengths ? "%d" : "auto");
   changed |= ImGui::SliderInt("Samples/pixel", &r.spp, 0, 64, r.spp ? "%d" : "auto");

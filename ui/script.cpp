@@ -6,13 +6,13 @@
 #include <map>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/units.h"  // kPi
 #include "ui/shortcuts.h"
 
 namespace pmsim::ui {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Arity {
   int min, max;

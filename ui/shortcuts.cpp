@@ -6,6 +6,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include "core/base/text.h"
+
 namespace pmsim::ui {
 namespace {
 
@@ -21,12 +23,6 @@ const std::vector<std::pair<const char*, int>>& named_keys() {
   return keys;
 }
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
 
 }  // namespace
 
@@ -71,14 +67,14 @@ bool parse_key_chord(std::string_view text, int& key, bool& shift, bool& ctrl) {
   for (;;) {
     const auto plus = rest.find('+');
     if (plus == std::string::npos || plus + 1 == rest.size()) break;
-    const std::string mod = lower(rest.substr(0, plus));
+    const std::string mod = lower_case(rest.substr(0, plus));
     if (mod == "shift") shift = true;
     else if (mod == "ctrl") ctrl = true;
     else return false;
     rest = rest.substr(plus + 1);
   }
   for (const auto& [name, code] : named_keys())
-    if (lower(name) == lower(rest)) return key = code, true;
+    if (lower_case(name) == lower_case(rest)) return key = code, true;
   if (rest.size() == 1) {
     const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(rest[0])));
     if ((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9')) return key = c, true;  // GLFW = ASCII

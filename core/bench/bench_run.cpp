@@ -16,7 +16,7 @@
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
 #include "core/io/image_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 

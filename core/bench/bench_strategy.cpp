@@ -182,7 +182,7 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
 
 StrategyResult run_strategy(const Scene& scene, const BenchStrategy& st, int threads) {
   Scene sc = scene;
-  for (const std::string& s : st.settings) apply_setting(sc, s);
+  apply_settings(sc, st.settings);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   StrategyResult r;
   switch (st.kind) {

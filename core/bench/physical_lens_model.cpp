@@ -174,7 +174,7 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   O.condenser = &condenser.geometry();
   O.media = objective.media(kLensNm);
   O.opt.max_depth = scene.optics.lens_depth;
-  O.opt.fresnel = scene.optics.schlick ? FresnelModel::Schlick : FresnelModel::Exact;
+  O.opt.fresnel = scene.optics.fresnel;
   O.opt.tir = TirMode::Stop;
   O.bfp_z_mm = O.objective->back_vertex().z + 2.0;
 
@@ -310,7 +310,7 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   r.wavelengths = L.n;
   r.model_report = "bench-side SML condenser + objective (paper lens, N-BK7), dT = " +
-                   std::to_string(scene.optics.lens_depth) + (scene.optics.schlick ? ", Schlick" : ", Fresnel") +
+                   std::to_string(scene.optics.lens_depth) + (scene.optics.fresnel == FresnelModel::Schlick ? ", Schlick" : ", Fresnel") +
                    ", ghosts splatted by back-focal-plane crossing; plate: renderer's modal fit, " +
                    std::to_string(L.n) + " bands";
   return r;

@@ -248,7 +248,7 @@ ReferenceImage converged_physical_reference(const Scene& scene, const std::strin
   Scene rs = scene;
   rs.optics.lens_model = LensModel::Physical;
   rs.optics.lens_depth = 5;
-  rs.optics.schlick = false;
+  rs.optics.fresnel = FresnelModel::Exact;
   rs.render.wavelengths = 128;
   rs.render.strategy = RenderStrategy::Modal;
   const std::string path = cache_path(cache_dir, "physical-lens-model:" + scene_to_json(rs).dump());

@@ -9,7 +9,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/optics/cauchy.h"
 
 namespace pmsim {
 
@@ -23,8 +25,7 @@ double IndexDispersion::n(double wavelength_nm) const {
       // Ghosh 1999, Opt. Commun. 163, 95, eq. (3): n² = A + B/(1 − C/λ²) + D/(1 − E/λ²).
       return std::sqrt(A + B / (1.0 - C / l2) + D / (1.0 - E / l2));
     case Model::Cauchy:
-      // Cauchy: n = A + B/λ² + C/λ⁴.
-      return A + B / l2 + C / (l2 * l2);
+      return cauchy_index(A, B, C, l);  // λ in µm
   }
   return A;
 }
@@ -152,27 +153,28 @@ double optic_angle_2v_rad(double nalpha, double nbeta, double ngamma) {
 }
 
 Crystal crystal_from_indices(const CrystalIndices& c) {
-  auto fmt = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return std::string(buf);
-  };
-  auto check = [&](const char* key, double n) {
-    if (!std::isfinite(n) || !(n > 1.0) || n > 5.0)
-      throw InputError("", std::string("sample.crystal.") + key, fmt(n),
-                       "a refractive index must be finite and between 1 and 5");
+  auto check = [](const char* key, double n) {
+    try {
+      check_refractive_index(n);
+    } catch (const BadValue& b) {
+      throw InputError("", key, number_text(n), b.why);
+    }
   };
   if (c.uniaxial) {
     check("no", c.no);
     check("ne", c.ne);
-    return Crystal::uniaxial_constant("custom uniaxial", c.no, c.ne);
+  } else {
+    check("nalpha", c.nalpha);
+    check("nbeta", c.nbeta);
+    check("ngamma", c.ngamma);
+    try {
+      check_biaxial_order(c.nalpha, c.nbeta, c.ngamma);
+    } catch (const BadValue& b) {
+      throw InputError("", "", number_text(c.nalpha) + ", " + number_text(c.nbeta) + ", " +
+                       number_text(c.ngamma), b.why);
+    }
   }
-  check("nalpha", c.nalpha);
-  check("nbeta", c.nbeta);
-  check("ngamma", c.ngamma);
-  if (!(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma))
-    throw InputError("", "sample.crystal", fmt(c.nalpha) + ", " + fmt(c.nbeta) + ", " + fmt(c.ngamma),
-                     "biaxial indices must satisfy nalpha <= nbeta <= ngamma");
+  if (c.uniaxial) return Crystal::uniaxial_constant("custom uniaxial", c.no, c.ne);
   return Crystal::biaxial_constant("custom biaxial", c.nalpha, c.nbeta, c.ngamma);
 }
 

@@ -15,7 +15,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "core/microscope/scene.h"
+#include "core/crystal/crystal_indices.h"
 
 namespace pmsim {
 
@@ -100,13 +100,13 @@ class Crystal {
 };
 
 // The mineral library (assets/minerals/*.json, or $PMSIM_ASSETS/minerals), loaded once.
-// Case-insensitive; throws InputError naming an unknown name (key "sample.mineral").
+// Case-insensitive; throws InputError naming an unknown name (no key: the caller knows it).
 const Crystal& find_mineral(std::string_view name);
 // Parses one mineral file; throws InputError naming the file, key and value on bad input.
 Crystal load_mineral_file(const std::string& path);
 std::vector<std::string> mineral_names();  // sorted, lower case
-// sample.crystal (scene.h) → a constant crystal; validates n > 1, finite, and nα ≤ nβ ≤ nγ;
-// throws InputError with key "sample.crystal".
+// Constant indices → a constant crystal; applies the index rule of crystal_indices.h, throwing
+// InputError with key "no", "nalpha", … (or "" for the order): the caller prefixes its key path.
 Crystal crystal_from_indices(const CrystalIndices& c);
 
 // Orientation helpers: the columns of the result are the crystal X, Y, Z axes in the lab frame at

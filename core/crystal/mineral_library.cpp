@@ -23,41 +23,44 @@
 #include <nlohmann/json.hpp>
 
 #include "core/crystal/crystal.h"
-#include "core/io/input_error.h"
+#include "core/base/asset_locator.h"
+#include "core/base/asset_names.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/base/text.h"
 
 namespace pmsim {
 namespace {
 
 using nlohmann::json;
 
-std::string lower(std::string_view s) {
-  std::string r(s);
-  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return std::tolower(c); });
-  return r;
-}
 
 struct Reader {
   const std::string& file;
   [[noreturn]] void fail(const std::string& key, const json& v, const std::string& why) const {
-    throw InputError(file, key, v.is_null() ? std::string() : v.dump(), why);
+    throw InputError(file, key, v.is_null() ? std::string() : shown(v), why);
   }
   const json& need(const json& obj, const std::string& key, const std::string& path) const {
     if (!obj.is_object() || !obj.contains(key)) fail(path, json(), "missing key");
     return obj.at(key);
   }
   double number(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail(path, v, "expected a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(path, v, "expected a finite number");
-    return d;
+    try {
+      return number_value(v);
+    } catch (const BadValue& b) {
+      fail(path, v, b.why);
+    }
   }
   // Every nm of the visible range: a pole of a dispersion formula (C or E near λ²) is a narrow
   // feature that three probe wavelengths miss, and the renderer samples any λ in 380–780 nm.
   double index_at(const IndexDispersion& d, const std::string& path, const json& v) const {
     for (double wl = 380.0; wl <= 780.0; wl += 1.0) {
       const double n = d.n(wl);
-      if (!std::isfinite(n) || !(n > 1.0) || n > 5.0)
-        fail(path, v, "refractive index outside (1, 5] at " + std::to_string(wl) + " nm");
+      try {
+        check_refractive_index(n);
+      } catch (const BadValue& b) {
+        fail(path, v, b.why + " (n = " + number_text(n) + " at " + number_text(wl) + " nm)");
+      }
     }
     return d.n(589.3);
   }
@@ -114,16 +117,7 @@ struct Reader {
 }  // namespace
 
 Crystal load_mineral_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "", "cannot open mineral file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double (1e400)
-    throw InputError(path, "", "", std::string("invalid JSON: ") + e.what());
-  } catch (const std::exception& e) {  // read errors, e.g. a folder given as the file
-    throw InputError(path, "", "", std::string("cannot read the mineral file: ") + e.what());
-  }
+  const json j = read_json_file(path, "mineral file");
   const Reader r{path};
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
   r.only_keys(j, "", {"name", "symmetry", "source", "indices", "absorption", "rotatory_power",
@@ -152,8 +146,11 @@ Crystal load_mineral_file(const std::string& path) {
     const auto b = r.dispersion(r.need(idx, "nbeta", "indices.nbeta"), "indices.nbeta");
     const auto g = r.dispersion(r.need(idx, "ngamma", "indices.ngamma"), "indices.ngamma");
     for (double wl = 380.0; wl <= 780.0; wl += 1.0) {
-      if (!(a.n(wl) <= b.n(wl) && b.n(wl) <= g.n(wl)))
-        r.fail("indices", idx, "biaxial indices must satisfy nalpha <= nbeta <= ngamma");
+      try {
+        check_biaxial_order(a.n(wl), b.n(wl), g.n(wl));
+      } catch (const BadValue& e) {
+        r.fail("indices", idx, e.why + " (at " + number_text(wl) + " nm)");
+      }
     }
     c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Biaxial, a, b, g,
                       src_v.get<std::string>());
@@ -219,11 +216,7 @@ Crystal load_mineral_file(const std::string& path) {
 
 namespace {
 
-std::filesystem::path mineral_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env)
-    return std::filesystem::path(env) / "minerals";
-  return std::filesystem::path(PMSIM_ASSET_DIR) / "minerals";
-}
+std::filesystem::path mineral_dir() { return std::filesystem::path(asset_dir()) / "minerals"; }
 
 struct Library {
   std::map<std::string, Crystal> by_name;  // lower-case name → crystal (node-stable references)
@@ -240,9 +233,11 @@ const Library& library() {
     for (const auto& e : std::filesystem::directory_iterator(dir))
       if (e.path().extension() == ".json") files.push_back(e.path());
     std::sort(files.begin(), files.end());
+    AssetNames defined("mineral");
     for (const auto& f : files) {
       Crystal c = load_mineral_file(f.string());
-      const std::string key = lower(c.name());
+      defined.add(c.name(), f.string());
+      const std::string key = lower_case(c.name());
       l.by_name.emplace(key, std::move(c));
     }
     return l;
@@ -254,11 +249,11 @@ const Library& library() {
 
 const Crystal& find_mineral(std::string_view name) {
   const Library& lib = library();
-  const auto it = lib.by_name.find(lower(name));
+  const auto it = lib.by_name.find(lower_case(name));
   if (it == lib.by_name.end()) {
     std::string known;
     for (const auto& [k, v] : lib.by_name) known += (known.empty() ? "" : ", ") + k;
-    throw InputError("", "sample.mineral", std::string(name), "unknown mineral (known: " + known + ")");
+    throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
   }
   return it->second;
 }

@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "core/io/atomic_file.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/base/text.h"
 #include "core/microscope/scene_check.h"
 
 namespace pmsim {
@@ -19,142 +21,59 @@ using nlohmann::json;
 
 namespace {
 
-// Thrown inside a key's reader with only the reason; the caller adds file, key and value.
-struct BadValue {
-  std::string why;
-};
-
-double as_number(const json& v) {
-  if (!v.is_number()) throw BadValue{"expected a number"};
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) throw BadValue{"not a finite number"};
-  return d;
-}
-int as_int(const json& v) {
-  const double d = as_number(v);
-  if (d != std::floor(d) || std::fabs(d) > 1e9) throw BadValue{"expected an integer"};
-  return static_cast<int>(d);
-}
-bool as_bool(const json& v) {
-  if (!v.is_boolean()) throw BadValue{"expected true or false"};
-  return v.get<bool>();
-}
-// Well-formed UTF-8 (RFC 3629: no overlongs, no surrogates, ≤ U+10FFFF): anything else cannot be
-// saved back as JSON (nlohmann's dump throws on it).
-bool valid_utf8(const std::string& s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    int n;
-    unsigned cp;
-    if (c < 0x80) {
-      ++i;
-      continue;
-    } else if ((c & 0xE0) == 0xC0) {
-      n = 1, cp = c & 0x1F;
-    } else if ((c & 0xF0) == 0xE0) {
-      n = 2, cp = c & 0x0F;
-    } else if ((c & 0xF8) == 0xF0) {
-      n = 3, cp = c & 0x07;
-    } else {
-      return false;
-    }
-    if (i + n >= s.size()) return false;  // truncated sequence
-    for (int k = 1; k <= n; ++k) {
-      const unsigned char d = static_cast<unsigned char>(s[i + k]);
-      if ((d & 0xC0) != 0x80) return false;
-      cp = (cp << 6) | (d & 0x3F);
-    }
-    static constexpr unsigned kMin[4] = {0, 0x80, 0x800, 0x10000};
-    if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
-    i += n + 1;
-  }
-  return true;
-}
-
-std::string as_string(const json& v) {
-  if (!v.is_string()) throw BadValue{"expected a string"};
-  std::string s = v.get<std::string>();
-  if (!valid_utf8(s)) throw BadValue{"not valid UTF-8 text"};
-  return s;
-}
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
+double as_number(const json& v) { return number_value(v); }
+int as_int(const json& v) { return integer_value(v); }
+bool as_bool(const json& v) { return bool_value(v); }
+std::string as_string(const json& v) { return string_value(v); }
 bool as_in_out(const json& v) {  // "in"|"out" (booleans accepted too)
   if (v.is_boolean()) return v.get<bool>();
-  const std::string s = lower(as_string(v));
+  const std::string s = lower_string_value(v);
   if (s == "in") return true;
   if (s == "out") return false;
   throw BadValue{"expected \"in\" or \"out\""};
 }
-std::array<double, 3> as_vec3(const json& v) {
-  if (!v.is_array() || v.size() != 3) throw BadValue{"expected a vector [x, y, z]"};
-  std::array<double, 3> a{};
-  for (int i = 0; i < 3; ++i) a[i] = as_number(v[i]);
-  const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  if (!(len > 1e-12)) throw BadValue{"a direction cannot be the zero vector"};
-  // Vectors are normalised (issue convention). One that is already unit to rounding is kept as
-  // written: dividing by a length of 1 ± 1 ulp would change its last bit on every save → load.
-  if (std::abs(len - 1.0) > 4.0 * std::numeric_limits<double>::epsilon())
-    for (double& c : a) c /= len;
-  return a;
+std::array<double, 3> as_vec3(const json& v) { return unit_vector_value(v); }
+template <class E>
+E as_enum(const json& v, const NameTable<E>& names) {
+  return enum_value(v, names);
 }
 template <class E>
-E as_enum(const json& v, std::initializer_list<std::pair<const char*, E>> names) {
-  const std::string s = lower(as_string(v));
-  std::string all;
-  for (const auto& [n, e] : names) {
-    if (s == n) return e;
-    all += (all.empty() ? "" : "|") + std::string(n);
-  }
-  throw BadValue{"expected one of " + all};
-}
-template <class E>
-std::string enum_name(E e, std::initializer_list<std::pair<const char*, E>> names) {
-  for (const auto& [n, x] : names)
-    if (x == e) return n;
-  return "?";
+std::string enum_name(E e, const NameTable<E>& names) {
+  return names.name(e);
 }
 
-const std::initializer_list<std::pair<const char*, ViewMode>> kModes = {{"ortho", ViewMode::Ortho},
-                                                                        {"cono", ViewMode::Cono}};
-const std::initializer_list<std::pair<const char*, SampleType>> kSampleTypes = {
+const NameTable<ViewMode> kModes = {{"ortho", ViewMode::Ortho}, {"cono", ViewMode::Cono}};
+const NameTable<SampleType> kSampleTypes = {
     {"plate", SampleType::Plate}, {"wedge", SampleType::Wedge}, {"section", SampleType::Section}};
-const std::initializer_list<std::pair<const char*, Compensator>> kCompensators = {
+const NameTable<Compensator> kCompensators = {
     {"none", Compensator::None},
     {"gypsum", Compensator::Gypsum},
     {"mica", Compensator::Mica},
     {"quartz_wedge", Compensator::QuartzWedge}};
-const std::initializer_list<std::pair<const char*, LensModel>> kLensModels = {
-    {"auto", LensModel::Auto}, {"ideal", LensModel::Ideal}, {"physical", LensModel::Physical}};
-const std::initializer_list<std::pair<const char*, RenderStrategy>> kRenderStrategies = {
+// render.strategy: auto (the cheapest accurate plate model per scene), modal (eigenmodes fitted
+// across the spectrum, band-averaged interference terms), exact (plate Jones matrix at every
+// wavelength sample, plain midpoint quadrature: the paper's uniform sampling).
+const NameTable<RenderStrategy> kStrategies = {
     {"auto", RenderStrategy::Auto}, {"modal", RenderStrategy::Modal}, {"exact", RenderStrategy::Exact}};
+const NameTable<LensModel> kLensModels = {
+    {"auto", LensModel::Auto}, {"ideal", LensModel::Ideal}, {"physical", LensModel::Physical}};
 
 CrystalIndices as_crystal(const json& v) {
   if (!v.is_object()) throw BadValue{"expected {\"no\":..,\"ne\":..} or {\"nalpha\":..,\"nbeta\":..,\"ngamma\":..}"};
   CrystalIndices c;
-  auto index = [&](const char* k) {
-    const double n = as_number(v.at(k));
-    if (!(n > 1.0)) throw BadValue{std::string(k) + " must be > 1"};
-    if (n > 5.0) throw BadValue{std::string(k) + " must be ≤ 5"};
-    return n;
-  };
   if (v.contains("no") && v.contains("ne") && v.size() == 2) {
     c.uniaxial = true;
-    c.no = index("no");
-    c.ne = index("ne");
+    c.no = as_number(v.at("no"));
+    c.ne = as_number(v.at("ne"));
   } else if (v.contains("nalpha") && v.contains("nbeta") && v.contains("ngamma") && v.size() == 3) {
     c.uniaxial = false;
-    c.nalpha = index("nalpha");
-    c.nbeta = index("nbeta");
-    c.ngamma = index("ngamma");
-    if (!(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma))
-      throw BadValue{"biaxial indices must satisfy nalpha ≤ nbeta ≤ ngamma"};
+    c.nalpha = as_number(v.at("nalpha"));
+    c.nbeta = as_number(v.at("nbeta"));
+    c.ngamma = as_number(v.at("ngamma"));
   } else {
     throw BadValue{"expected exactly {\"no\",\"ne\"} or {\"nalpha\",\"nbeta\",\"ngamma\"}"};
   }
+  check_crystal_indices(c);
   return c;
 }
 json crystal_json(const CrystalIndices& c) {
@@ -208,7 +127,7 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.sample.mineral; }},
       {"sample.crystal",
        [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower(v.get<std::string>()) == "none"))
+         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
            s.sample.crystal.reset();
          else
            s.sample.crystal = as_crystal(v);
@@ -247,15 +166,19 @@ const std::vector<Key>& keys() {
       {"render.tolerance",
        [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
        [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
-      {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kRenderStrategies); },
-       [](const Scene& s) -> json { return enum_name(s.render.strategy, kRenderStrategies); }},
+      {"render.strategy",
+       [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
+       [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
       {"optics.lens_model",
        [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
        [](const Scene& s) -> json { return s.optics.lens_depth; }},
-      {"optics.schlick", [](Scene& s, const json& v) { s.optics.schlick = as_bool(v); },
-       [](const Scene& s) -> json { return s.optics.schlick; }},
+      {"optics.schlick",  // a bool in files and --set: true is the Schlick approximation
+       [](Scene& s, const json& v) {
+         s.optics.fresnel = as_bool(v) ? FresnelModel::Schlick : FresnelModel::Exact;
+       },
+       [](const Scene& s) -> json { return s.optics.fresnel == FresnelModel::Schlick; }},
   };
   return k;
 }
@@ -266,13 +189,17 @@ const Key* find_key(std::string_view path) {
   return nullptr;
 }
 
+// The groups of dot paths: a value that is not an object there is a wrong type, not an unknown key.
+bool is_group(std::string_view key) {
+  return key == "objective" || key == "condenser" || key == "sample" || key == "render" ||
+         key == "optics";
+}
+
 // Keys that document a file rather than set anything.
 bool is_annotation(std::string_view key) {
   return key == "source" || key == "description" || key == "comment" || key == "type" ||
          key == "name";
 }
-
-std::string shown(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
 void read_key(Scene& s, const Key& k, const json& v, const std::string& file, const std::string& raw) {
   try {
@@ -304,8 +231,10 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
         read_key(s, *k, it.value(), file, raw[path]);
       } else if (it.value().is_object()) {
         walk(it.value(), path);
+      } else if (is_group(path)) {
+        throw InputError(file, path, shown(it.value()), "expected an object");
       } else if (!(prefix.empty() && is_annotation(path))) {
-        if (warnings) warnings->push_back((file.empty() ? "" : file + ": ") + "unknown key '" + path + "' ignored");
+        JsonReader(j, file, "", warnings).warn("unknown key '" + path + "' ignored");
       }
     }
   };
@@ -327,30 +256,10 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
   return s;
 }
 
-std::string read_scene_text(const std::string& path) {
-  // A folder opens as an ifstream on Linux and fails only while being read, from inside the
-  // parser (std::ios_base::failure thrown through nlohmann's lexer left its heap corrupt): refuse
-  // it here and parse from memory.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path, "", "", "cannot read: is a folder, not a scene file");
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, "", "", "cannot open the scene file");
-  std::ostringstream text;
-  text << f.rdbuf();
-  if (f.bad()) throw InputError(path, "", "", "cannot read the scene file");
-  return text.str();
-}
+std::string read_scene_text(const std::string& path) { return read_text_file(path, "scene file"); }
 
 Scene load_scene_file(const std::string& path, std::vector<std::string>* warnings) {
-  const std::string text = read_scene_text(path);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e400)
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  }
-  return scene_from_json(j, path, warnings);
+  return scene_from_json(read_json_file(path, "scene file"), path, warnings);
 }
 
 json scene_to_json(const Scene& scene) {
@@ -372,33 +281,66 @@ void save_scene_file(const Scene& scene, const std::string& path) {
   write_text_atomically(path, scene_to_json(scene).dump(2) + "\n");
 }
 
-void apply_setting(Scene& scene, std::string_view key, std::string_view value) {
+namespace {
+
+// Reads one --set into `s` (type and value checks of that key only); the scene as a whole is
+// checked once all settings apply, since some are valid only together (x_axis and z_axis).
+void read_setting(Scene& s, std::string_view key, std::string_view value) {
   const Key* k = find_key(key);
   if (!k) throw InputError("", std::string(key), std::string(value), "unknown scene key");
   json v = json::parse(value.begin(), value.end(), nullptr, false);
   if (v.is_discarded()) v = std::string(value);
-  Scene s = scene;
   read_key(s, *k, v, "", std::string(value));
   // Switching the view mode moves condenser top lens and Bertrand lens together, as the UI's
   // one-click switch does; bertrand can then be flipped on its own.
   if (key == "mode") s.bertrand_in = s.mode == ViewMode::Cono;
+}
+
+std::pair<std::string_view, std::string_view> split_assignment(std::string_view assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    throw InputError("", std::string(assignment), "", "expected key=value");
+  return {assignment.substr(0, eq), assignment.substr(eq + 1)};
+}
+
+// Applies (key, value) pairs in order to a copy, validates it once, and only then replaces
+// `scene`: a refused setting leaves the scene as it was.
+void apply_pairs(Scene& scene, const std::vector<std::pair<std::string_view, std::string_view>>& kv) {
+  Scene s = scene;
+  std::map<std::string, std::string, std::less<>> typed;  // key → its value as typed
+  const char* pixel_key = nullptr;
+  for (const auto& [key, value] : kv) {
+    read_setting(s, key, value);
+    typed[std::string(key)] = std::string(value);
+    if (key == "render.width") pixel_key = "render.width";
+    if (key == "render.height") pixel_key = "render.height";
+  }
   try {
-    // Too many pixels is the fault of the side just set, not necessarily of render.height.
-    if (key == "render.width" || key == "render.height")
-      check_pixel_count(s, "", key == "render.width" ? "render.width" : "render.height");
+    // Too many pixels is the fault of the side set last, not necessarily of render.height.
+    if (pixel_key) check_pixel_count(s, "", pixel_key);
     validate_scene(s, "");
   } catch (const InputError& e) {
-    if (e.key != key) throw;
-    throw e.with_value(std::string(value));  // as typed: 1000000, not 1e+06
+    const auto it = typed.find(e.key);
+    if (it == typed.end()) throw;
+    throw e.with_value(it->second);  // as typed: 1000000, not 1e+06
   }
   scene = s;
 }
 
+}  // namespace
+
+void apply_setting(Scene& scene, std::string_view key, std::string_view value) {
+  apply_pairs(scene, {{key, value}});
+}
+
 void apply_setting(Scene& scene, std::string_view assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string_view::npos || eq == 0)
-    throw InputError("", std::string(assignment), "", "expected key=value");
-  apply_setting(scene, assignment.substr(0, eq), assignment.substr(eq + 1));
+  apply_pairs(scene, {split_assignment(assignment)});
+}
+
+void apply_settings(Scene& scene, const std::vector<std::string>& assignments) {
+  std::vector<std::pair<std::string_view, std::string_view>> kv;
+  for (const std::string& a : assignments) kv.push_back(split_assignment(a));
+  apply_pairs(scene, kv);
 }
 
 void validate_scene(const Scene& s, const std::string& file) { check_scene(s, file); }

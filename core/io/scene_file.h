@@ -26,10 +26,15 @@ nlohmann::json scene_to_json(const Scene& scene);
 void save_scene_file(const Scene& scene, const std::string& path);
 
 // One `--set key=value`: value is parsed as JSON when it parses (numbers, [x,y,z], objects),
-// else taken as a string. Throws InputError(file "", key, value) on an unknown key or bad value.
+// else taken as a string. Throws InputError(file "", key, value) on an unknown key or bad value,
+// leaving the scene unchanged; the scene is validated after the setting applies.
 void apply_setting(Scene& scene, std::string_view key, std::string_view value);
 // "key=value" form.
 void apply_setting(Scene& scene, std::string_view assignment);
+// Every "key=value" of a command line, in order, then one validation of the result: settings
+// valid only together (sample.x_axis and sample.z_axis turned at once) are accepted in any
+// order. On an error the scene is unchanged.
+void apply_settings(Scene& scene, const std::vector<std::string>& assignments);
 
 // Range and consistency checks shared by every input path (file, --set, UI); throws InputError.
 void validate_scene(const Scene& scene, const std::string& file = "");

@@ -8,7 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {
@@ -19,36 +20,18 @@ using json = nlohmann::json;
 
 std::string show(const json& v) { return v.dump(); }
 
-double get_number(const json& j, const char* key, const std::string& path, const std::string& file) {
-  const json& v = j.at(key);
-  if (!v.is_number()) throw InputError(file, path, show(v), "expected a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(file, path, show(v), "expected a finite number");
-  return x;
+glm::dvec3 get_vec3(const JsonReader& r, const char* key) {
+  const auto a = r.require<std::array<double, 3>>(key);
+  return {a[0], a[1], a[2]};
 }
 
-glm::dvec3 get_vec3(const json& j, const char* key, const std::string& file) {
-  const json& v = j.at(key);
-  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
-      !v[2].is_number())
-    throw InputError(file, key, show(v), "expected an array of 3 numbers");
-  glm::dvec3 r{v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
-  if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
-    throw InputError(file, key, show(v), "expected finite numbers");
-  return r;
-}
-
-double get_cap(const json& j, const char* key, const std::string& file) {
-  if (!j.contains(key)) return 0.0;
-  const json& c = j.at(key);
-  if (c.is_null()) return 0.0;
-  if (!c.is_object()) throw InputError(file, key, show(c), "expected an object {\"radius_mm\": R}");
-  for (auto it = c.begin(); it != c.end(); ++it) {
-    if (it.key() != "radius_mm")
-      throw InputError(file, std::string(key) + "." + it.key(), show(it.value()), "unknown key");
-  }
-  if (!c.contains("radius_mm") || c.at("radius_mm").is_null()) return 0.0;
-  return get_number(c, "radius_mm", std::string(key) + ".radius_mm", file);
+// front/back: {"radius_mm": R}, null or absent (a plane).
+double get_cap(const JsonReader& r, const char* key) {
+  if (!r.has(key) || r.find(key)->is_null()) return 0.0;
+  const JsonReader cap = r.object(key);
+  cap.refuse_unknown_keys({"radius_mm"});
+  if (!cap.has("radius_mm") || cap.find("radius_mm")->is_null()) return 0.0;
+  return cap.require<double>("radius_mm");
 }
 
 // Distance between the two cap rims along the axis when the vertices are `thickness` apart.
@@ -67,54 +50,27 @@ double cap_sag_mm(double R, double r) {
 
 LensSpec lens_spec_from_json(const json& j, const std::string& file) {
   if (!j.is_object()) throw InputError(file, "", show(j).substr(0, 60), "a lens must be a JSON object");
-  static const char* known[] = {"glass",     "center",       "axis",   "radius_mm", "front",
-                                "back",      "ledge_mm",     "thickness_mm", "medium", "source",
-                                "name",      "description"};
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (std::find_if(std::begin(known), std::end(known),
-                     [&](const char* k) { return it.key() == k; }) == std::end(known))
-      throw InputError(file, it.key(), show(it.value()), "unknown key");
-  }
+  const JsonReader r(j, file);
+  r.refuse_unknown_keys({"glass", "center", "axis", "radius_mm", "front", "back", "ledge_mm",
+                         "thickness_mm", "medium", "source", "name", "description"});
   LensSpec s;
   s.file = file;
-  auto get_string = [&](const char* key, std::string& out, bool required) {
-    if (!j.contains(key)) {
-      if (required) throw InputError(file, key, "", "missing (e.g. \"N-BK7\")");
-      return;
-    }
-    if (!j.at(key).is_string()) throw InputError(file, key, show(j.at(key)), "expected a name string");
-    out = j.at(key).get<std::string>();
-  };
-  get_string("glass", s.glass, true);
-  get_string("medium", s.medium, false);
-  if (j.contains("center")) s.center = get_vec3(j, "center", file);
-  if (j.contains("axis")) s.axis = get_vec3(j, "axis", file);
-  if (!j.contains("radius_mm")) throw InputError(file, "radius_mm", "", "missing aperture radius");
-  s.radius_mm = get_number(j, "radius_mm", "radius_mm", file);
-  s.front_radius_mm = get_cap(j, "front", file);
-  s.back_radius_mm = get_cap(j, "back", file);
-  if (j.contains("ledge_mm")) s.ledge_mm = get_number(j, "ledge_mm", "ledge_mm", file);
-  if (j.contains("thickness_mm"))
-    s.thickness_mm = get_number(j, "thickness_mm", "thickness_mm", file);
+  s.glass = r.require<std::string>("glass");
+  s.medium = r.get_or<std::string>("medium", s.medium);
+  if (r.has("center")) s.center = get_vec3(r, "center");
+  if (r.has("axis")) s.axis = get_vec3(r, "axis");
+  s.radius_mm = r.require<double>("radius_mm");
+  s.front_radius_mm = get_cap(r, "front");
+  s.back_radius_mm = get_cap(r, "back");
+  s.ledge_mm = r.optional<double>("ledge_mm");
+  s.thickness_mm = r.optional<double>("thickness_mm");
   if (!s.ledge_mm && !s.thickness_mm)
     throw InputError(file, "ledge_mm", "", "give ledge_mm or thickness_mm");
   return s;
 }
 
 LensSpec load_lens_spec(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "", "", "cannot open lens file");
-  json j;
-  try {
-    j = json::parse(f);
-  } catch (const json::exception& e) {
-    // parse_error, and out_of_range for numbers beyond double (1e400)
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  } catch (const std::exception& e) {
-    // e.g. a folder given as the file: the stream opens but reading fails
-    throw InputError(path, "", "", std::string("cannot read the lens file: ") + e.what());
-  }
-  return lens_spec_from_json(j, path);
+  return lens_spec_from_json(read_json_file(path, "lens file"), path);
 }
 
 json lens_spec_to_json(const LensSpec& s) {

@@ -31,14 +31,11 @@
 
 #include "core/lens/lens.h"
 #include "core/optics/interaction.h"
+#include "core/optics/interface_model.h"  // FresnelModel, TirMode
 #include "core/optics/polarized_ray.h"
 
 namespace pmsim {
 
-enum class TirMode {
-  Stop,   // report a Tir event (intensity arriving) and stop that branch (paper §7 mode 1)
-  Split,  // continue the E⊥ and E∥ parts as two linear rays with their δ (mode 2, TIR_callback)
-};
 enum class LedgeMode {
   Stop,      // report a Ledge event and stop
   Callback,  // also hand the ray arriving at the ledge to ledge_callback (then stop)

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/optics/cauchy.h"
+
 namespace pmsim {
 
 namespace {
@@ -38,8 +40,7 @@ double Medium::n(double wavelength_nm) const {
       return std::sqrt(s);
     }
     case Model::Cauchy2:
-      // Cauchy (1836): n = A + B/λ².
-      return cauchy_a_ + cauchy_b_nm2_ / (wavelength_nm * wavelength_nm);
+      return cauchy_index(cauchy_a_, cauchy_b_nm2_, 0.0, wavelength_nm);  // two terms, λ in nm
   }
   return n0_;
 }

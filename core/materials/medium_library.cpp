@@ -10,7 +10,11 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/io/input_error.h"
+#include "core/base/asset_locator.h"
+#include "core/base/asset_names.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/base/text.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {
@@ -19,22 +23,14 @@ namespace {
 
 using nlohmann::json;
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-// Reads a material file's keys with the file and key named in every error.
+// Reads a material file's keys with the file and key named in every error; values convert with
+// the shared rules of core/base/json_reader.h (the same messages as every other file type).
 class Reader {
  public:
   Reader(const std::string& file, const json& root) : file_(file), root_(root) {}
 
   [[noreturn]] void fail(const std::string& key, const json& value, const std::string& why) const {
-    const std::string text = value.is_null()     ? std::string()
-                             : value.is_string() ? value.get<std::string>()
-                                                 : value.dump();
-    throw InputError(file_, key, text, why);
+    throw InputError(file_, key, value.is_null() ? std::string() : shown(value), why);
   }
 
   const json& require(const std::string& key) const {
@@ -49,10 +45,11 @@ class Reader {
   }
 
   double number(const json& v, const std::string& key) const {
-    if (!v.is_number()) fail(key, v, "expected a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(key, v, "expected a finite number");
-    return d;
+    try {
+      return number_value(v);
+    } catch (const BadValue& b) {
+      fail(key, v, b.why);
+    }
   }
   double number(const std::string& key) const { return number(require(key), key); }
 
@@ -91,16 +88,7 @@ const std::set<std::string> kKnownKeys = {
 }  // namespace
 
 Medium load_medium_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "", "cannot open material file");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::exception& e) {  // syntax errors and numbers overflowing a double
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  } catch (const std::exception& e) {  // read errors, e.g. a folder given as the file
-    throw InputError(path, "", "", std::string("cannot read the material file: ") + e.what());
-  }
+  const json root = read_json_file(path, "material file");
   if (!root.is_object()) throw InputError(path, "", "", "expected a JSON object");
   const Reader r(path, root);
   for (const auto& [key, value] : root.items()) {
@@ -110,7 +98,7 @@ Medium load_medium_file(const std::string& path) {
   const std::string name = r.string("name");
   r.string("source");  // every data file names where its numbers come from
   const std::string model = r.string("model");
-  const bool gas = lower(name) == "air" || lower(name) == "vacuum";
+  const bool gas = lower_case(name) == "air" || lower_case(name) == "vacuum";
 
   Medium m;
   std::vector<double> sellmeier_b, sellmeier_c;
@@ -245,11 +233,6 @@ Medium load_medium_file(const std::string& path) {
 
 namespace {
 
-std::string asset_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env != nullptr && *env != '\0') return env;
-  return PMSIM_ASSET_DIR;
-}
-
 struct Library {
   std::map<std::string, Medium> by_lower_name;
   std::vector<std::string> names;
@@ -268,12 +251,11 @@ Library load_library() {
   }
   std::sort(files.begin(), files.end());
   Library lib;
+  AssetNames defined("medium");
   for (const auto& f : files) {
     Medium m = load_medium_file(f.string());
-    const std::string key = lower(m.name());
-    if (lib.by_lower_name.count(key)) {
-      throw InputError(f.string(), "name", m.name(), "a medium of this name is already defined");
-    }
+    const std::string key = lower_case(m.name());
+    defined.add(m.name(), f.string());
     lib.names.push_back(m.name());
     lib.by_lower_name.emplace(key, std::move(m));
   }
@@ -290,7 +272,7 @@ const Library& library() {
 
 const Medium& find_medium(std::string_view name) {
   const Library& lib = library();
-  const auto it = lib.by_lower_name.find(lower(name));
+  const auto it = lib.by_lower_name.find(lower_case(name));
   if (it == lib.by_lower_name.end()) {
     std::string known;
     for (const auto& n : lib.names) known += (known.empty() ? "" : ", ") + n;

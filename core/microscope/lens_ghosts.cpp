@@ -27,12 +27,12 @@ constexpr double kLensNm = kPhysicalLensNm;
 constexpr int kBands = 8;                    // 50 nm: the ghost is ~0.2 % of the light
 constexpr int kMaxGridSide = 128;
 
-LensGhostTable trace_ghosts(int depth, bool schlick) {
+LensGhostTable trace_ghosts(int depth, FresnelModel fresnel) {
   const Lens lens(physical_lens_spec(+1));
   const LensMedia media = lens.media(kLensNm);
   LensTraceOptions opt;
   opt.max_depth = depth;
-  opt.fresnel = schlick ? FresnelModel::Schlick : FresnelModel::Exact;
+  opt.fresnel = fresnel;
   LensGhostTable t;
   t.depth = depth;
   const int n = LensGhostTable::kSamples;
@@ -117,12 +117,12 @@ const std::vector<LensGhostPath>& LensGhostTable::at(double sin_theta) const {
   return paths[std::min(static_cast<int>(std::lround(u)), kSamples - 1)];
 }
 
-const LensGhostTable& lens_ghost_table(int depth, bool schlick) {
+const LensGhostTable& lens_ghost_table(int depth, FresnelModel fresnel) {
   static std::mutex mu;
-  static std::map<std::pair<int, bool>, std::unique_ptr<LensGhostTable>> cache;
+  static std::map<std::pair<int, FresnelModel>, std::unique_ptr<LensGhostTable>> cache;
   std::lock_guard<std::mutex> lock(mu);
-  auto& slot = cache[{depth, schlick}];
-  if (!slot) slot = std::make_unique<LensGhostTable>(trace_ghosts(depth, schlick));
+  auto& slot = cache[{depth, fresnel}];
+  if (!slot) slot = std::make_unique<LensGhostTable>(trace_ghosts(depth, fresnel));
   return *slot;
 }
 
@@ -130,7 +130,7 @@ LensGhostImage lens_ghost_image(const EvaluationPlan& plan, const std::atomic<bo
   LensGhostImage img;
   const Scene& sc = plan.scene();
   if (!plan.lenses() || sc.optics.lens_depth < 2 || sc.mode != ViewMode::Cono || !sc.bertrand_in) return img;
-  const LensGhostTable& table = lens_ghost_table(sc.optics.lens_depth, sc.optics.schlick);
+  const LensGhostTable& table = lens_ghost_table(sc.optics.lens_depth, sc.optics.fresnel);
   const int W = plan.width(), H = plan.height();
   const int stride = std::max(1, (std::max(W, H) + kMaxGridSide - 1) / kMaxGridSide);
   const int GW = (W + stride - 1) / stride, GH = (H + stride - 1) / stride;

@@ -24,6 +24,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/optics/interface_model.h"
+
 namespace pmsim {
 
 class EvaluationPlan;
@@ -46,8 +48,8 @@ struct LensGhostTable {
   const std::vector<LensGhostPath>& at(double sin_theta) const;
 };
 
-// Cached per (depth, schlick). Throws InputError if the lens asset is missing.
-const LensGhostTable& lens_ghost_table(int depth, bool schlick);
+// Cached per (depth, Fresnel model). Throws InputError if the lens asset is missing.
+const LensGhostTable& lens_ghost_table(int depth, FresnelModel fresnel);
 
 struct LensGhostImage {
   std::vector<float> xyz;          // width*height*3, added to the direct light (mono: T, T, T)

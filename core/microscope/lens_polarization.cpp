@@ -25,12 +25,12 @@ LensSpec physical_lens_spec(int side) {
 namespace {
 constexpr double kLensNm = kPhysicalLensNm;
 
-LensPolarizationTable trace_table(bool schlick) {
+LensPolarizationTable trace_table(FresnelModel fresnel) {
   const Lens lens(physical_lens_spec(+1));
   const LensMedia media = lens.media(kLensNm);
   LensTraceOptions opt;
   opt.max_depth = 0;
-  opt.fresnel = schlick ? FresnelModel::Schlick : FresnelModel::Exact;
+  opt.fresnel = fresnel;
   LensPolarizationTable t;
   const int n = LensPolarizationTable::kSamples;
   t.tau_s.resize(n);
@@ -100,11 +100,11 @@ glm::dmat2 aplanatic_frame(const glm::dvec3& k) {
   return glm::dmat2(image_x, image_y);
 }
 
-const LensPolarizationTable& lens_polarization_table(bool schlick) {
+const LensPolarizationTable& lens_polarization_table(FresnelModel fresnel) {
   static LensPolarizationTable tables[2];
   static std::once_flag once[2];
-  const int k = schlick ? 1 : 0;
-  std::call_once(once[k], [&] { tables[k] = trace_table(schlick); });
+  const int k = fresnel == FresnelModel::Schlick ? 1 : 0;
+  std::call_once(once[k], [&] { tables[k] = trace_table(fresnel); });
   return tables[k];
 }
 

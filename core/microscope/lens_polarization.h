@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/lens/lens.h"
+#include "core/optics/interface_model.h"
 
 namespace pmsim {
 
@@ -44,6 +45,6 @@ struct LensPolarizationTable {
 glm::dmat2 aplanatic_frame(const glm::dvec3& k_air);
 
 // Traced once per Fresnel model (cached). Throws InputError if the lens asset is missing.
-const LensPolarizationTable& lens_polarization_table(bool schlick);
+const LensPolarizationTable& lens_polarization_table(FresnelModel fresnel);
 
 }  // namespace pmsim

@@ -27,12 +27,12 @@ ModelPolicy choose_model_policy(const Scene& scene, const std::vector<OpticalDom
   // (the physical one is normalised to its axial transmission), so only oblique light can need
   // the physical model.
   policy.lens_model_asked = scene.optics.lens_model;
-  policy.schlick = scene.optics.schlick;
+  policy.fresnel = scene.optics.fresnel;
   policy.oblique_light = scene.mode == ViewMode::Cono;
   if (scene.optics.lens_model == LensModel::Physical) {
-    policy.lenses = &lens_polarization_table(scene.optics.schlick);
+    policy.lenses = &lens_polarization_table(scene.optics.fresnel);
   } else if (scene.optics.lens_model == LensModel::Auto && policy.oblique_light) {
-    const LensPolarizationTable& table = lens_polarization_table(scene.optics.schlick);
+    const LensPolarizationTable& table = lens_polarization_table(scene.optics.fresnel);
     policy.lens_difference_dL = lens_difference(table);
     if (*policy.lens_difference_dL > scene.render.tolerance_de2000) policy.lenses = &table;
   }
@@ -73,7 +73,7 @@ std::string lens_report(const ModelPolicy& policy) {
   }
   if (policy.lenses)
     return std::string("; condenser, objective: physical SML lenses (Fresnel ") +
-           (policy.schlick ? "Schlick" : "exact") + ", depth-0 path)";
+           (policy.fresnel == FresnelModel::Schlick ? "Schlick" : "exact") + ", depth-0 path)";
   return std::string("; condenser, objective: ideal (perfect imaging, polarization kept") +
          (policy.lens_model_asked == LensModel::Auto ? "; auto: exact for axial light)" : ")");
 }

@@ -41,7 +41,7 @@ struct ModelPolicy {
 
   // Lenses (condenser and objective; the Bertrand lens is always ideal).
   LensModel lens_model_asked = LensModel::Auto;  // optics.lens_model
-  bool schlick = false;                          // optics.schlick: the physical lenses' Fresnel
+  FresnelModel fresnel = FresnelModel::Exact;    // optics.schlick: the physical lenses' Fresnel
   bool oblique_light = false;                    // convergent light: the only case where lenses differ
   const LensPolarizationTable* lenses = nullptr; // the physical lens model; null = ideal
   std::optional<double> lens_difference_dL;      // auto in oblique light: mean ΔL*, ideal vs physical

@@ -1,9 +1,9 @@
 #include "core/microscope/sample_source.h"
 
-#include <cstdlib>
 #include <filesystem>
 
-#include "core/io/input_error.h"
+#include "core/base/asset_locator.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {
@@ -32,11 +32,6 @@ bool medium_known(const std::string& name) {
   }
 }
 
-std::string asset_dir() {
-  if (const char* env = std::getenv("PMSIM_ASSETS"); env && *env) return env;
-  return PMSIM_ASSET_DIR;
-}
-
 std::string section_path(const std::string& name) {
   namespace fs = std::filesystem;
   if (name.empty()) return "";
@@ -52,10 +47,18 @@ bool section_known(const std::string& name) { return !section_path(name).empty()
 
 const Crystal& scene_crystal(const Scene& scene, Crystal& storage) {
   if (scene.sample.crystal) {
-    storage = crystal_from_indices(*scene.sample.crystal);
+    try {
+      storage = crystal_from_indices(*scene.sample.crystal);
+    } catch (const InputError& e) {
+      throw e.under("sample.crystal");
+    }
     return storage;
   }
-  return find_mineral(scene.sample.mineral);
+  try {
+    return find_mineral(scene.sample.mineral);
+  } catch (const InputError& e) {
+    throw e.under("sample.mineral");
+  }
 }
 
 }  // namespace pmsim

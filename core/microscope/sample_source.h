@@ -4,6 +4,7 @@
 // what is a known name.
 #include <string>
 
+#include "core/base/asset_locator.h"  // asset_dir(), which the section lookup uses
 #include "core/crystal/crystal.h"
 #include "core/microscope/scene.h"
 
@@ -17,7 +18,6 @@ bool section_known(const std::string& name);
 // The file a section name refers to: a path as given if it exists, else
 // <assets>/sections/<name>[.json]; <assets> is $PMSIM_ASSETS or the source tree's assets/.
 std::string section_path(const std::string& name);
-std::string asset_dir();
 
 // The crystal a plate or wedge scene shows: sample.crystal when set (owned by `storage`), else the
 // named mineral.

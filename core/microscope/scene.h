@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "core/crystal/crystal_indices.h"  // CrystalIndices: sample.crystal
+#include "core/optics/interface_model.h"   // FresnelModel: optics.schlick
 #include "core/spectrum/illuminant.h"
 
 namespace pmsim {
@@ -24,11 +26,7 @@ enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: non
 enum class LensModel { Auto, Ideal, Physical };            // optics.lens_model: auto|ideal|physical
 enum class RenderStrategy { Auto, Modal, Exact };          // render.strategy: auto|modal|exact
 
-struct CrystalIndices {          // sample.crystal: {"no":..,"ne":..} or {"nalpha":..,"nbeta":..,"ngamma":..}
-  bool uniaxial = true;
-  double no = 1.544, ne = 1.553;                     // uniaxial
-  double nalpha = 1.5, nbeta = 1.5, ngamma = 1.5;    // biaxial
-};
+// sample.crystal is CrystalIndices (core/crystal/crystal_indices.h)
 
 struct ObjectiveSettings {
   double magnification = 10.0;   // objective.magnification
@@ -64,7 +62,7 @@ struct RenderSettings {
 struct OpticsSettings {
   LensModel lens_model = LensModel::Auto;      // optics.lens_model
   int lens_depth = 1;                          // optics.lens_depth (dT for physical lenses)
-  bool schlick = false;                        // optics.schlick (approximate Fresnel)
+  FresnelModel fresnel = FresnelModel::Exact;  // optics.schlick: true|false (true: Schlick, approximate)
 };
 
 struct Scene {

@@ -6,7 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {
@@ -76,7 +77,9 @@ void check_scene(const Scene& s, const std::string& file) {
             "a direction cannot be the zero vector");
   }
   {
-    // The biaxial frame needs two independent directions (Gram–Schmidt from z_axis).
+    // The biaxial frame: x_axis (nα) ⟂ z_axis (nγ). Parallel ones define no orientation; oblique
+    // ones are a typo (the renderer would silently replace x_axis by its part ⟂ z_axis). The
+    // tolerance, |x̂·ẑ| ≤ 1e-6, accepts axes written to six or more significant digits.
     const auto& x = s.sample.x_axis;
     const auto& z = s.sample.z_axis;
     const double cx = x[1] * z[2] - x[2] * z[1], cy = x[2] * z[0] - x[0] * z[2], cz = x[0] * z[1] - x[1] * z[0];
@@ -85,17 +88,20 @@ void check_scene(const Scene& s, const std::string& file) {
     require(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-9 * lx * lz, file, "sample.x_axis",
             vec_text(x),
             "must not be parallel to sample.z_axis");
+    const double cos_xz = (x[0] * z[0] + x[1] * z[1] + x[2] * z[2]) / (lx * lz);
+    require(std::abs(cos_xz) <= 1e-6, file, "sample.x_axis", vec_text(x),
+            "must be perpendicular to sample.z_axis " + vec_text(z) + " (to 1e-6)");
   }
   if (s.sample.crystal) {
-    const CrystalIndices& c = *s.sample.crystal;
-    const double idx[] = {c.uniaxial ? c.no : c.nalpha, c.uniaxial ? c.ne : c.nbeta,
-                          c.uniaxial ? c.ne : c.ngamma};
-    for (double n : idx)
-      require(std::isfinite(n) && n > 1.0 && n <= 5.0, file, "sample.crystal", num(n),
-              "refractive indices must be in (1, 5]");
-    if (!c.uniaxial)
-      require(c.nalpha <= c.nbeta && c.nbeta <= c.ngamma, file, "sample.crystal", "",
-              "biaxial indices must satisfy nalpha ≤ nbeta ≤ ngamma");
+    try {
+      check_crystal_indices(*s.sample.crystal);
+    } catch (const BadValue& b) {
+      const CrystalIndices& c = *s.sample.crystal;
+      throw InputError(file, "sample.crystal",
+                       c.uniaxial ? num(c.no) + ", " + num(c.ne)
+                                  : num(c.nalpha) + ", " + num(c.nbeta) + ", " + num(c.ngamma),
+                       b.why);
+    }
   } else {
     // Whatever the sample type: a typo on a section scene must not wait until the user switches
     // to a plate to be reported on a key they did not touch.

@@ -9,7 +9,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/base/units.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {
@@ -111,49 +113,42 @@ glm::dmat3 half_turn(const glm::dvec3& u) {
 }
 
 SectionMap parse_section(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "", "", "cannot open the thin-section file");
-  json j;
-  try {
-    j = json::parse(f);
-  } catch (const json::exception& e) {
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  }
+  const json j = read_json_file(path, "thin-section file");
+  if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
+  const JsonReader r(j, path);
   SectionMap m;
   m.path = path;
-  m.name = j.value("name", path);
-  m.source = j.value("source", "");
-  if (j.contains("thickness_um")) m.thickness_um = j["thickness_um"].get<double>();
-  if (!j.contains("grains") || !j["grains"].is_array() || j["grains"].empty())
-    throw InputError(path, "grains", "", "a section needs a non-empty array of grains");
-  int i = 0;
-  for (const json& gj : j["grains"]) {
-    const std::string key = "grains[" + std::to_string(i++) + "]";
+  m.name = r.get_or<std::string>("name", path);
+  m.source = r.get_or<std::string>("source", "");
+  if (r.has("thickness_um")) m.thickness_um = r.require<double>("thickness_um");
+  for (const JsonReader& gr : r.objects("grains", 1)) {
+    const json& gj = gr.node();
+    const std::string& key = gr.prefix();
     auto vec = [&](const char* k, int n) {
       if (!gj.contains(k) || !gj[k].is_array() || static_cast<int>(gj[k].size()) != n)
-        throw InputError(path, key + "." + k, gj.contains(k) ? gj[k].dump() : "",
+        throw InputError(path, key + "." + k, gj.contains(k) ? shown(gj[k]) : "",
                          "expected an array of " + std::to_string(n) + " numbers");
       std::vector<double> v;
       for (const json& x : gj[k]) {
-        if (!x.is_number() || !std::isfinite(x.get<double>()))
-          throw InputError(path, key + "." + k, gj[k].dump(), "not a finite number");
-        v.push_back(x.get<double>());
+        try {
+          v.push_back(number_value(x));
+        } catch (const BadValue& b) {
+          gr.fail(k, gj[k], b.why);
+        }
       }
       return v;
     };
     SectionGrain g;
-    g.mineral = gj.value("mineral", "");
+    g.mineral = gr.get_or<std::string>("mineral", "");
     if (!mineral_known(g.mineral))
       throw InputError(path, key + ".mineral", g.mineral,
                        "unknown mineral (known: " + known_minerals_list() + ")");
     g.crystal = &find_mineral(g.mineral);
     const auto s = vec("seed", 2);
     g.seed = {s[0], s[1]};
-    g.elongation = gj.value("elongation", 1.0);
-    g.elongation_rad = glm::radians(gj.value("elongation_deg", 0.0));
-    g.weight = gj.value("weight", 1.0);
-    if (!(g.elongation > 0) || !(g.weight > 0))
-      throw InputError(path, key, gj.dump(), "elongation and weight must be > 0");
+    g.elongation = gr.get_or("elongation", 1.0, Range::above(0));
+    g.elongation_rad = radians(gr.get_or("elongation_deg", 0.0));
+    g.weight = gr.get_or("weight", 1.0, Range::above(0));
     try {
       if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
         const auto x = vec("x_axis", 3), z = vec("z_axis", 3);
@@ -165,12 +160,10 @@ SectionMap parse_section(const std::string& path) {
     } catch (const std::invalid_argument& e) {
       throw InputError(path, key, gj.dump(), e.what());
     }
-    if (gj.contains("twin")) {
-      const json& t = gj["twin"];
+    if (const auto t = gr.optional_object("twin")) {
       g.twinned = true;
-      g.twin_trace_rad = glm::radians(t.value("trace_deg", 0.0));
-      g.twin_width = t.value("width", 0.05);
-      if (!(g.twin_width > 0)) throw InputError(path, key + ".twin.width", t.dump(), "must be > 0");
+      g.twin_trace_rad = radians(t->get_or("trace_deg", 0.0));
+      g.twin_width = t->get_or("width", 0.05, Range::above(0));
       const glm::dvec3 axis{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad), 0.0};
       g.twin_orientation = half_turn(axis) * g.orientation;
     } else {

@@ -8,16 +8,12 @@
 #include <glm/geometric.hpp>
 
 #include "core/optics/fresnel.h"
+#include "core/optics/interface_model.h"
 #include "core/optics/polarization_frame.h"
 #include "core/optics/polarized_ray.h"
 #include "core/optics/schlick.h"
 
 namespace pmsim {
-
-enum class FresnelModel {
-  Exact,    // Fresnel amplitudes (fresnel.h)
-  Schlick,  // APPROXIMATE: Schlick reflectance, polarization-blind (schlick.h)
-};
 
 struct InteractionResult {
   PolarizedRay reflected[2];  // [0] only, or under TIR: [0] = E⊥ part, [1] = E∥ part

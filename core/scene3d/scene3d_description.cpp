@@ -6,130 +6,108 @@
 #include <set>
 #include <sstream>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 #include "core/materials/medium.h"
 
 namespace pmsim {
 namespace {
 
-// Reads one JSON object's keys with the file and dot path at hand, so that every error names both.
+// One JSON object of a 3-D scene: the shared JsonReader (core/base/json_reader.h), so that a
+// wrong type or an out-of-range number reads as in every other file type, plus the scene's own
+// value kinds (sizes, colours). A misspelt key is an error, not a silent default.
 class Reader {
  public:
   Reader(const nlohmann::json& j, std::string file, std::string path)
-      : j_(j), file_(std::move(file)), path_(std::move(path)) {
-    if (!j_.is_object()) fail("", j_, "must be a JSON object");
+      : r_(j, std::move(file), std::move(path)) {
+    if (!j.is_object()) r_.fail("", j, "expected an object");
   }
 
   [[noreturn]] void fail(const std::string& key, const nlohmann::json& v,
                          const std::string& why) const {
-    throw InputError(file_, key_path(key), v.is_null() ? "" : v.dump(), why);
+    r_.fail(key, v, why);
   }
-  std::string key_path(const std::string& key) const {
-    if (key.empty()) return path_;
-    return path_.empty() ? key : path_ + "." + key;
-  }
-  const std::string& file() const { return file_; }
-  bool has(const std::string& key) const { return j_.contains(key); }
-  const nlohmann::json& at(const std::string& key) const { return j_.at(key); }
+  std::string key_path(const std::string& key) const { return r_.path(key); }
+  const std::string& file() const { return r_.file(); }
+  bool has(const std::string& key) const { return r_.node().contains(key); }
+  const nlohmann::json& at(const std::string& key) const { return r_.node().at(key); }
 
-  // Every key present must be one of `allowed`: a misspelt key is an error, not a silent default.
   void only(std::initializer_list<const char*> allowed) const {
-    const std::set<std::string> ok(allowed.begin(), allowed.end());
-    for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!ok.count(it.key())) fail(it.key(), it.value(), "unknown key");
+    for (auto it = r_.node().begin(); it != r_.node().end(); ++it) {
+      bool ok = false;
+      for (const char* k : allowed) ok = ok || it.key() == k;
+      if (!ok) fail(it.key(), it.value(), "unknown key");
+    }
   }
   void need(const std::string& key) const {
-    if (!has(key)) throw InputError(file_, key_path(key), "", "missing required key");
+    if (!has(key)) throw InputError(file(), key_path(key), "", "missing required key");
   }
 
   double number(const std::string& key, double def, double lo, double hi) const {
     if (!has(key)) return def;
-    const auto& v = at(key);
-    if (!v.is_number()) fail(key, v, "must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x) || x < lo || x > hi)
-      fail(key, v, "must lie in [" + fmt(lo) + ", " + fmt(hi) + "]");
+    const double x = r_.checked(key, at(key), number_value);
+    if (!Range::closed(lo, hi).contains(x)) fail(key, at(key), Range::closed(lo, hi).message());
     return x;
   }
   int integer(const std::string& key, int def, int lo, int hi) const {
     if (!has(key)) return def;
-    const auto& v = at(key);
-    if (!v.is_number_integer()) fail(key, v, "must be an integer");
-    const long long x = v.get<long long>();
-    if (x < lo || x > hi) fail(key, v, "must lie in [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return static_cast<int>(x);
+    const int x = r_.checked(key, at(key), integer_value);
+    if (x < lo || x > hi) fail(key, at(key), Range::closed(lo, hi).message());
+    return x;
   }
   bool boolean(const std::string& key, bool def) const {
-    if (!has(key)) return def;
-    if (!at(key).is_boolean()) fail(key, at(key), "must be true or false");
-    return at(key).get<bool>();
+    return has(key) ? r_.checked(key, at(key), bool_value) : def;
   }
   std::string string(const std::string& key, const std::string& def) const {
-    if (!has(key)) return def;
-    if (!at(key).is_string()) fail(key, at(key), "must be a string");
-    return at(key).get<std::string>();
+    return has(key) ? r_.checked(key, at(key), string_value) : def;
   }
-  // One of `choices`, returned as its index.
-  int choice(const std::string& key, int def, std::initializer_list<const char*> choices) const {
+  template <class E>
+  E choice(const std::string& key, E def, const NameTable<E>& names) const {
     if (!has(key)) return def;
-    const std::string s = string(key, "");
-    int i = 0;
-    std::string list;
-    for (const char* c : choices) {
-      if (s == c) return i;
-      list += (i ? ", " : "") + std::string(c);
-      ++i;
-    }
-    fail(key, at(key), "must be one of: " + list);
+    return r_.checked(key, at(key), [&](const nlohmann::json& v) { return enum_value(v, names); });
   }
   glm::dvec3 vec3(const std::string& key, const glm::dvec3& def, double max_abs = 1e6) const {
     if (!has(key)) return def;
     return vec3_value(key, at(key), max_abs);
   }
   glm::dvec3 vec3_value(const std::string& key, const nlohmann::json& v, double max_abs) const {
-    if (!v.is_array() || v.size() != 3) fail(key, v, "must be an array of 3 numbers");
-    glm::dvec3 r;
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number()) fail(key, v, "must be an array of 3 numbers");
-      r[i] = v[i].get<double>();
-      if (!std::isfinite(r[i]) || std::abs(r[i]) > max_abs)
-        fail(key, v, "components must be finite and at most " + fmt(max_abs) + " in size");
-    }
-    return r;
+    const auto a = r_.checked(key, v, vector3_value);
+    for (double c : a)
+      if (std::abs(c) > max_abs)
+        fail(key, v, "components must be at most " + number_text(max_abs) + " in size");
+    return {a[0], a[1], a[2]};
   }
   glm::dvec3 direction(const std::string& key, const glm::dvec3& def) const {
     const glm::dvec3 d = vec3(key, def);
     const double len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    if (!(len > 1e-12)) fail(key, at(key), "must be a non-zero vector");
+    if (!(len > 1e-12)) fail(key, at(key), "a direction cannot be the zero vector");
     return d / len;
   }
   glm::dvec2 size2(const std::string& key, const glm::dvec2& def) const {
     if (!has(key)) return def;
     const auto& v = at(key);
     if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-      fail(key, v, "must be an array of 2 positive numbers");
+      fail(key, v, "expected an array of 2 positive numbers");
     const glm::dvec2 s{v[0].get<double>(), v[1].get<double>()};
     if (!(s.x > 0.0 && s.y > 0.0 && s.x < 1e7 && s.y < 1e7))
-      fail(key, v, "must be an array of 2 positive numbers");
+      fail(key, v, "expected an array of 2 positive numbers");
     return s;
   }
   glm::dvec3 rgb_value(const std::string& key, const nlohmann::json& v) const {
     const glm::dvec3 c = vec3_value(key, v, 1e6);
     if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0 || c.x > 1.0 || c.y > 1.0 || c.z > 1.0)
-      fail(key, v, "colour components must lie in [0, 1] (linear sRGB)");
+      fail(key, v, "colour components must be in [0, 1] (linear sRGB)");
     return c;
   }
 
-  static std::string fmt(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
-  }
-
  private:
-  const nlohmann::json& j_;
-  std::string file_, path_;
+  JsonReader r_;
 };
+
+const NameTable<Scene3dMode> kModes = {{"spectral", Scene3dMode::Spectral}, {"rgb", Scene3dMode::Rgb}};
+const NameTable<FresnelModel> kFresnelModels = {{"exact", FresnelModel::Exact},
+                                                {"schlick", FresnelModel::Schlick}};
+const NameTable<TirMode> kTirModes = {{"stop", TirMode::Stop}, {"split", TirMode::Split}};
 
 Illuminant read_illuminant(const Reader& r, const std::string& key) {
   if (!r.has(key)) return Illuminant::D65;
@@ -186,12 +164,12 @@ Scene3dRenderSettings parse_render(const Reader& r) {
   r.only({"mode", "wavelengths", "max_depth", "lens_depth", "fresnel", "tir", "exposure",
           "background", "ambient"});
   Scene3dRenderSettings s;
-  s.mode = static_cast<Scene3dMode>(r.choice("mode", 0, {"spectral", "rgb"}));
+  s.mode = r.choice("mode", Scene3dMode::Spectral, kModes);
   s.wavelengths = r.integer("wavelengths", s.wavelengths, 2, 81);
   s.max_depth = r.integer("max_depth", s.max_depth, 1, 64);
   s.lens_depth = r.integer("lens_depth", s.lens_depth, 0, 64);
-  s.fresnel = static_cast<Scene3dFresnel>(r.choice("fresnel", 0, {"exact", "schlick"}));
-  s.tir = static_cast<Scene3dTir>(r.choice("tir", 0, {"stop", "split"}));
+  s.fresnel = r.choice("fresnel", FresnelModel::Exact, kFresnelModels);
+  s.tir = r.choice("tir", TirMode::Stop, kTirModes);
   s.exposure = r.number("exposure", s.exposure, 0.0, 1e9);
   if (r.has("background")) s.background_rgb = r.vec3("background", s.background_rgb);
   if (s.background_rgb.x < 0 || s.background_rgb.y < 0 || s.background_rgb.z < 0)
@@ -203,8 +181,9 @@ Scene3dRenderSettings parse_render(const Reader& r) {
 Scene3dLight parse_light(const Reader& r) {
   Scene3dLight l;
   r.need("type");
-  const int type = r.choice("type", 0, {"point", "area"});
-  if (type == 0) {
+  using LightType = Scene3dLight::Type;
+  static const NameTable<LightType> kTypes = {{"point", LightType::Point}, {"area", LightType::Area}};
+  if (r.choice("type", LightType::Point, kTypes) == LightType::Point) {
     r.only({"type", "position", "intensity", "emission"});
     r.need("position");
     l.type = Scene3dLight::Type::Point;
@@ -231,12 +210,15 @@ Scene3dMaterial parse_material(const Reader& r, const std::string& name) {
   Scene3dMaterial m;
   m.name = name;
   r.need("type");
-  const int type = r.choice("type", 0, {"diffuse", "glass"});
-  if (type == 0) {
+  using Type = Scene3dMaterial::Type;
+  using Pattern = Scene3dMaterial::Pattern;
+  static const NameTable<Type> kTypes = {{"diffuse", Type::Diffuse}, {"glass", Type::Glass}};
+  static const NameTable<Pattern> kPatterns = {
+      {"solid", Pattern::Solid}, {"stripes", Pattern::Stripes}, {"checker", Pattern::Checker}};
+  if (r.choice("type", Type::Diffuse, kTypes) == Type::Diffuse) {
     r.only({"type", "rgb", "pattern", "colors", "period_mm"});
     m.type = Scene3dMaterial::Type::Diffuse;
-    m.pattern = static_cast<Scene3dMaterial::Pattern>(
-        r.choice("pattern", 0, {"solid", "stripes", "checker"}));
+    m.pattern = r.choice("pattern", Pattern::Solid, kPatterns);
     if (m.pattern == Scene3dMaterial::Pattern::Solid) {
       if (r.has("colors")) r.fail("colors", r.at("colors"), "only with a stripes/checker pattern");
       r.need("rgb");
@@ -309,8 +291,11 @@ Scene3dObject parse_object(const Reader& r, const std::vector<Scene3dMaterial>& 
                            const std::string& scene_dir) {
   Scene3dObject o;
   r.need("type");
-  const int type = r.choice("type", 0, {"plane", "box", "sphere", "mesh", "lens"});
-  o.type = static_cast<Scene3dObject::Type>(type);
+  using Type = Scene3dObject::Type;
+  static const NameTable<Type> kTypes = {{"plane", Type::Plane}, {"box", Type::Box},
+                                         {"sphere", Type::Sphere}, {"mesh", Type::Mesh},
+                                         {"lens", Type::Lens}};
+  o.type = r.choice("type", Type::Plane, kTypes);
   auto material = [&] {
     r.need("material");
     const std::string name = r.string("material", "");
@@ -431,15 +416,7 @@ Scene3dDescription parse_scene3d(const nlohmann::json& j, const std::string& fil
 }
 
 Scene3dDescription load_scene3d_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "", "cannot open the scene file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, "", "", std::string("not valid JSON: ") + e.what());
-  }
-  return parse_scene3d(j, path);
+  return parse_scene3d(read_json_file(path, "scene file"), path);
 }
 
 }  // namespace pmsim

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/optics/interface_model.h"
 #include "core/spectrum/illuminant.h"
 
 namespace pmsim {
@@ -29,16 +30,14 @@ struct Scene3dCamera {
 };
 
 enum class Scene3dMode { Spectral, Rgb };
-enum class Scene3dFresnel { Exact, Schlick };
-enum class Scene3dTir { Stop, Split };
 
 struct Scene3dRenderSettings {
   Scene3dMode mode = Scene3dMode::Spectral;
   int wavelengths = 81;       // spectral: uniform 380–780 nm (81 = 5 nm steps, the paper's nSp)
   int max_depth = 8;          // Whitted tree depth (surface interactions)
   int lens_depth = 5;         // the paper's dT: internal reflections followed inside a lens
-  Scene3dFresnel fresnel = Scene3dFresnel::Exact;
-  Scene3dTir tir = Scene3dTir::Stop;  // the paper's SML mode 1 (stop) or 2 (split into ⟂, ∥)
+  FresnelModel fresnel = FresnelModel::Exact;  // render.fresnel: exact|schlick
+  TirMode tir = TirMode::Stop;  // the paper's SML mode 1 (stop) or 2 (split into ⟂, ∥)
   double exposure = 1.0;      // multiplies the linear RGB result
   glm::dvec3 background_rgb{0.0};  // radiance of rays leaving the scene (linear sRGB)
   double ambient = 0.0;       // Whitted's ambient term, fraction of the diffuse colour

@@ -60,8 +60,8 @@ Scene3dImage render_scene3d(const Scene3dDescription& desc) {
   img.settings["type"] = "scene3d";
   img.settings["mode"] = rs.mode == Scene3dMode::Spectral ? "spectral" : "rgb";
   img.settings["channels"] = tracer.channels();
-  img.settings["fresnel"] = rs.fresnel == Scene3dFresnel::Exact ? "exact" : "schlick";
-  img.settings["tir"] = rs.tir == Scene3dTir::Stop ? "stop" : "split";
+  img.settings["fresnel"] = rs.fresnel == FresnelModel::Exact ? "exact" : "schlick";
+  img.settings["tir"] = rs.tir == TirMode::Stop ? "stop" : "split";
   img.settings["max_depth"] = rs.max_depth;
   img.settings["lens_depth"] = rs.lens_depth;
   img.settings["time_ms"] = img.time_ms;

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/lens/lens_embree.h"
 
 namespace pmsim {

@@ -5,37 +5,26 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
 #include "core/lens/lens_tracer.h"
 
 namespace pmsim {
 
 Objective objective_from_json(const nlohmann::json& j, const std::string& file) {
   if (!j.is_object()) throw InputError(file, "", "", "an objective must be a JSON object");
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    static const char* known[] = {"type", "source", "name", "lenses", "object_z_mm", "na",
-                                  "field_max_mm", "wavelength_nm"};
-    bool ok = false;
-    for (const char* k : known) ok = ok || it.key() == k;
-    if (!ok) throw InputError(file, it.key(), it.value().dump(), "unknown key");
-  }
+  const JsonReader r(j, file);
+  r.refuse_unknown_keys({"type", "source", "name", "lenses", "object_z_mm", "na", "field_max_mm",
+                         "wavelength_nm"});
   if (!j.contains("type") || j.at("type") != "objective")
-    throw InputError(file, "type", j.contains("type") ? j.at("type").dump() : "",
+    throw InputError(file, "type", j.contains("type") ? shown(j.at("type")) : "",
                      "must be \"objective\"");
   Objective o;
-  o.name = j.value("name", std::string("objective"));
-  auto num = [&](const char* key, double def, double lo, double hi) {
-    if (!j.contains(key)) return def;
-    const auto& v = j.at(key);
-    if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
-      throw InputError(file, key, v.dump(),
-                       "must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v.get<double>();
-  };
-  o.object_z_mm = num("object_z_mm", 0.0, -1e6, 1e6);
-  o.na = num("na", 0.25, 1e-6, 0.999);
-  o.field_max_mm = num("field_max_mm", 1.0, 0.0, 1e6);
-  o.wavelength_nm = num("wavelength_nm", 587.5618, 380.0, 780.0);
+  o.name = r.get_or<std::string>("name", "objective");
+  o.object_z_mm = r.get_or("object_z_mm", 0.0, Range::closed(-1e6, 1e6));
+  o.na = r.get_or("na", 0.25, Range::closed(1e-6, 0.999));
+  o.field_max_mm = r.get_or("field_max_mm", 1.0, Range::closed(0.0, 1e6));
+  o.wavelength_nm = r.get_or("wavelength_nm", 587.5618, Range::closed(380.0, 780.0));
   if (!j.contains("lenses") || !j.at("lenses").is_array() || j.at("lenses").empty())
     throw InputError(file, "lenses", j.contains("lenses") ? j.at("lenses").dump().substr(0, 60) : "",
                      "must be a non-empty array of lenses");

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 #include "core/optics/beer_lambert.h"
 #include "core/optics/interaction.h"
@@ -61,9 +61,9 @@ WhittedTracer::WhittedTracer(const Scene3dWorld& world)
   const Scene3dRenderSettings& rs = desc_.render;
   spectral_ = rs.mode == Scene3dMode::Spectral;
   eps_ = 1e-6 * world.scene_size_mm() + 1e-7;
-  fresnel_ = rs.fresnel == Scene3dFresnel::Schlick ? FresnelModel::Schlick : FresnelModel::Exact;
+  fresnel_ = rs.fresnel;
   lens_options_.max_depth = rs.lens_depth;
-  lens_options_.tir = rs.tir == Scene3dTir::Split ? TirMode::Split : TirMode::Stop;
+  lens_options_.tir = rs.tir;
   lens_options_.ledge = LedgeMode::Stop;
   // The eye ray carries the linear state being traced (see the header), so the SML traces it as
   // a polarized ray; G is the same both ways.

@@ -17,7 +17,7 @@
 
 #include "core/crystal/crystal.h"
 #include "core/crystal/plate.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/materials/medium.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "tests/fuzz/fuzz_targets.h"

@@ -15,7 +15,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
 #include "tests/fuzz/fuzz_support.h"

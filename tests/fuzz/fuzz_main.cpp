@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/base/asset_locator.h"
 #include "tests/fuzz/fuzz_targets.h"
 
 #define PMSIM_CAT2(a, b) a##b
@@ -11,8 +12,7 @@
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   if (const char* out = std::getenv("PMSIM_FUZZ_MAKE_SEEDS"); out && *out) {
-    const char* assets = std::getenv("PMSIM_ASSETS");
-    pmsim::fuzz::PMSIM_CAT(PMSIM_FUZZ_TARGET, _seeds)(assets && *assets ? assets : PMSIM_ASSET_DIR, out);
+    pmsim::fuzz::PMSIM_CAT(PMSIM_FUZZ_TARGET, _seeds)(pmsim::asset_dir(), out);
     std::exit(0);
   }
   return 0;

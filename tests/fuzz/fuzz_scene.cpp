@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/crystal/crystal.h"
-#include "core/io/input_error.h"
+#include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "tests/fuzz/fuzz_targets.h"

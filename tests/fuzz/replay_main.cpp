@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/asset_locator.h"
 #include "tests/fuzz/fuzz_targets.h"
 
 namespace {
@@ -38,11 +39,6 @@ const Target* find(const std::string& name) {
   std::exit(2);
 }
 
-std::string asset_dir() {
-  const char* env = std::getenv("PMSIM_ASSETS");
-  return env && *env ? env : PMSIM_ASSET_DIR;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,7 +48,7 @@ int main(int argc, char** argv) {
   }
   if (argc == 4 && std::strcmp(argv[1], "--seeds") == 0) {
     std::filesystem::create_directories(argv[3]);
-    find(argv[2])->seeds(asset_dir(), argv[3]);
+    find(argv[2])->seeds(pmsim::asset_dir(), argv[3]);
     return 0;
   }
   if (argc < 3) {

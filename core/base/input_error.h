@@ -17,6 +17,11 @@ struct InputError : std::runtime_error {
   // The same error showing `raw`, the value as the user typed it (validation after parsing only
   // knows the parsed number: 1e+06 for "1000000").
   InputError with_value(std::string raw) const { return InputError(file, key, std::move(raw), reason); }
+  // The same error with `prefix` put before the key ("sample.crystal" + "nalpha"): lower modules
+  // name keys relative to what they read; the caller knows where that sits in its file.
+  InputError under(const std::string& prefix) const {
+    return InputError(file, key.empty() ? prefix : prefix + "." + key, value, reason);
+  }
 
  private:
   static std::string compose(const std::string& f, const std::string& k, const std::string& v,
