@@ -9,6 +9,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "app/cli_policy.h"
 #include "core/bench/bench_run.h"
 #include "core/bench/frontier_plot.h"
 #include "core/io/atomic_file.h"
@@ -16,11 +17,7 @@
 
 namespace {
 
-void usage(std::ostream& o) {
-  o << "usage: pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N]\n"
-       "                   [--cache-dir DIR] [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR]\n"
-       "                   [--images DIR] [--from-json FILE (redraw table/plot/markdown, no run)]\n";
-}
+constexpr const char* kProgram = "pmsim-bench";
 
 // <build>/bench-cache next to the app folder of this executable.
 std::string default_cache_dir() {
@@ -46,40 +43,36 @@ int parse_int(const std::string& flag, const char* v) {
 int main(int argc, char** argv) {
   pmsim::BenchOptions opt;
   opt.cache_dir = default_cache_dir();
-  std::string json_path, out_dir, from_json;
+  std::string json_path, out_dir, from_json, size, threads;
+  bool no_throughput = false;
+  CLI::App app{"Renders the bench scenes with every strategy and measures time and CIEDE2000 against "
+               "converged references.",
+               kProgram};
+  pmsim::cli::last_value_wins(app);
+  app.add_flag("--quick", opt.quick, "smaller images and fewer throughput rays");
+  app.add_option("--json", json_path, "write the rows as JSON")->type_name("FILE");
+  app.add_option("--out-dir", out_dir, "write frontier.md and frontier.png there")->type_name("DIR");
+  app.add_option("--size", size, "image side in pixels, 8..4096 (default 512, quick 96)")->type_name("N");
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->type_name("N");
+  app.add_option("--cache-dir", opt.cache_dir, "folder of the cached references")->type_name("DIR")->capture_default_str();
+  app.add_flag("--no-throughput", no_throughput, "skip the ray-throughput measurement");
+  app.add_option("--scene", opt.scene_filter, "only the scenes whose name contains it")->type_name("SUBSTR");
+  app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")->type_name("SUBSTR");
+  app.add_option("--images", opt.images_dir, "write every image (and the references) as PNG there")->type_name("DIR");
+  app.add_option("--from-json", from_json, "redraw table, plot and markdown from its rows (no run)")->type_name("FILE");
+  pmsim::cli::parse_or_exit(app, argc, argv);
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> const char* {
-        if (i + 1 >= argc) throw pmsim::InputError("", a, "", "missing value");
-        return argv[++i];
-      };
-      if (a == "--quick") opt.quick = true;
-      else if (a == "--json") json_path = value();
-      else if (a == "--out-dir") out_dir = value();
-      else if (a == "--cache-dir") opt.cache_dir = value();
-      else if (a == "--scene") opt.scene_filter = value();
-      else if (a == "--strategy") opt.strategy_filter = value();
-      else if (a == "--images") opt.images_dir = value();
-      else if (a == "--from-json") from_json = value();
-      else if (a == "--size") {
-        opt.size = parse_int(a, value());
-        if (opt.size < 8 || opt.size > 4096) throw pmsim::InputError("", a, std::to_string(opt.size), "must be in 8…4096");
-      } else if (a == "--threads") {
-        opt.threads = parse_int(a, value());
-        if (opt.threads < 0) throw pmsim::InputError("", a, std::to_string(opt.threads), "must be ≥ 0");
-      } else if (a == "--no-throughput") opt.throughput_rays = -1;
-      else if (a == "-h" || a == "--help") {
-        usage(std::cout);
-        return 0;
-      } else {
-        throw pmsim::InputError("", "argument", a, "unknown option");
-      }
+    if (app.count("--size")) {
+      opt.size = parse_int("--size", size.c_str());
+      if (opt.size < 8 || opt.size > 4096) throw pmsim::InputError("", "--size", std::to_string(opt.size), "must be in 8…4096");
     }
+    if (app.count("--threads")) {
+      opt.threads = parse_int("--threads", threads.c_str());
+      if (opt.threads < 0) throw pmsim::InputError("", "--threads", std::to_string(opt.threads), "must be ≥ 0");
+    }
+    if (no_throughput) opt.throughput_rays = -1;
   } catch (const pmsim::InputError& e) {
-    std::cerr << "pmsim-bench: " << e.what() << "\n";
-    usage(std::cerr);
-    return 2;
+    pmsim::cli::usage_error(kProgram, e.what());
   }
   try {
     pmsim::BenchReport rep;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_policy.h"
 #include "core/base/asset_locator.h"
 #include "core/io/image_file.h"
 #include "core/base/input_error.h"
@@ -410,9 +411,10 @@ int run_vignetting(const Common& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pmsim-experiments: the experiments of the lens paper (Figs. 3, 4, 6; Tables 1, 2)"};
+  CLI::App app{"pmsim-experiments: the experiments of the lens paper (Figs. 3, 4, 6; Tables 1, 2)",
+               "pmsim-experiments"};
   Common c;
-  app.add_option("--out-dir", c.out_dir, "folder for the images")->capture_default_str();
+  app.add_option("--out-dir", c.out_dir, "folder for the images")->type_name("DIR")->capture_default_str();
   app.add_flag("--quick", c.quick, "smaller images and ray counts (a few seconds)");
   app.require_subcommand(1);
   app.fallthrough();  // --quick and --out-dir may follow the subcommand too
@@ -421,11 +423,7 @@ int main(int argc, char** argv) {
   auto* brewster = app.add_subcommand("brewster", "polarizing camera filter at Brewster's angle");
   auto* vig = app.add_subcommand("vignetting", "forward-tracing vignetting estimate of an objective");
   auto* cone = app.add_subcommand("cone-table", "Section 8: Tables 1 and 2 (ray cone of a lens)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  pmsim::cli::parse_or_exit(app, argc, argv);
   try {
     if (fig3->parsed()) return run_fig3(c);
     if (cone->parsed()) return run_cone_table(c);
@@ -433,10 +431,10 @@ int main(int argc, char** argv) {
     if (brewster->parsed()) return run_brewster(c);
     if (vig->parsed()) return run_vignetting(c);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "pmsim-experiments: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "pmsim-experiments: %s\n", e.what());
     return 1;
   }
   return 0;

@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cli_policy.h"
+
 #include "core/io/atomic_file.h"
 #include "core/io/image_file.h"
 #include "core/base/input_error.h"
@@ -26,54 +28,28 @@
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif "
-    "[--stats FILE.json]\n"
-    "  Without SCENE, renders the default scene (assets/scenes/quartz_section_ortho.json).\n"
-    "  Keys are the scene's dot paths, e.g. --set stage_deg=45 --set sample.mineral=calcite.\n";
+constexpr const char* kProgram = "pmsim-render";
 
 struct Args {
   std::string scene_path, out, stats;
   std::vector<std::string> sets;
 };
 
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::cerr << "pmsim-render: " << msg << "\n" << kUsage;
-  std::exit(2);
-}
+[[noreturn]] void usage_error(const std::string& msg) { pmsim::cli::usage_error(kProgram, msg); }
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&](const char* opt) {
-      if (i + 1 >= argc) usage_error(std::string(opt) + " needs a value");
-      return std::string(argv[++i]);
-    };
-    if (s == "--help" || s == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (s == "--set") {
-      a.sets.push_back(value("--set"));
-    } else if (s.rfind("--set=", 0) == 0) {
-      a.sets.push_back(s.substr(6));
-    } else if (s == "--out" || s == "-o") {
-      a.out = value("--out");
-    } else if (s.rfind("--out=", 0) == 0) {
-      a.out = s.substr(6);
-    } else if (s == "--stats") {
-      a.stats = value("--stats");
-    } else if (s.rfind("--stats=", 0) == 0) {
-      a.stats = s.substr(8);
-    } else if (!s.empty() && s[0] == '-') {
-      usage_error("unknown option '" + s + "'");
-    } else if (a.scene_path.empty()) {
-      a.scene_path = s;
-    } else {
-      usage_error("more than one scene file given ('" + a.scene_path + "', '" + s + "')");
-    }
-  }
-  if (a.out.empty()) usage_error("--out FILE is required");
+  CLI::App app{"Renders a microscope or 3-D scene to convergence and writes the image.", kProgram};
+  app.footer(
+      "Without SCENE, renders the default scene (assets/scenes/quartz_section_ortho.json).\n"
+      "Keys are the scene's dot paths, e.g. --set stage_deg=45 --set sample.mineral=calcite.");
+  pmsim::cli::last_value_wins(app);
+  app.add_option("SCENE", a.scene_path, "scene file (JSON)")->type_name("FILE.json");
+  pmsim::cli::add_repeatable(app, "--set", a.sets, "change a scene key (repeatable, applied in order)")
+      ->type_name("key=value");
+  app.add_option("-o,--out", a.out, "output image (.png, .exr or .tif)")->type_name("FILE")->required();
+  app.add_option("--stats", a.stats, "write the render statistics as JSON")->type_name("FILE.json");
+  pmsim::cli::parse_or_exit(app, argc, argv);
   return a;
 }
 
@@ -186,14 +162,14 @@ int main(int argc, char** argv) {
                {"model_report", img.model_report}};
     }
   } catch (const pmsim::InputError& e) {
-    std::cerr << "pmsim-render: " << e.what() << "\n";
+    std::cerr << kProgram << ": " << e.what() << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "pmsim-render: not enough memory to render this scene (try a smaller "
                  "render.width × render.height)\n";
     return 1;
   } catch (const std::exception& e) {  // no future throw may abort: a message and exit 1
-    std::cerr << "pmsim-render: " << e.what() << "\n";
+    std::cerr << kProgram << ": " << e.what() << "\n";
     return 1;
   }
   try {
@@ -203,7 +179,7 @@ int main(int argc, char** argv) {
     std::cerr << "pmsim-render: not enough memory to write " << args.out << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "pmsim-render: " << e.what() << "\n";
+    std::cerr << kProgram << ": " << e.what() << "\n";
     return 1;
   }
   return 0;

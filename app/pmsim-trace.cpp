@@ -1,6 +1,6 @@
 // pmsim-trace: trace one polarized ray through one lens (the SML) and print the bundle as JSON.
-// The interface is a contract others script against (issue #2); see usage() below. Bad input:
-// a message naming the key on stderr, exit code 2, nothing on stdout.
+// The interface is a contract others script against (issue #2); run() lists the options (--help).
+// Bad input: a message naming the key on stderr, exit code 2, nothing on stdout.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,18 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_policy.h"
 #include "core/base/input_error.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
 
 namespace {
 
-const char* kUsage =
-    "usage: pmsim-trace --lens FILE.json --origin x,y,z --dir x,y,z --pol x,y,z --wavelength-nm L\n"
-    "                   [--intensity I] [--source ch] [--delta-rad d] [--optical-path-mm O]\n"
-    "                   [--depth dT] [--tir stop|split] [--ledge stop]\n"
-    "Traces one linearly polarized ray through the lens and prints {rays, events, absorbed} as\n"
-    "JSON. Defaults: intensity 1, source 0, delta 0, optical path 0, depth 3, tir stop.\n";
+constexpr const char* kProgram = "pmsim-trace";
 
 using pmsim::InputError;
 
@@ -62,33 +58,26 @@ std::string vec(const glm::dvec3& v) {
 
 int run(int argc, char** argv) {
   std::map<std::string, std::string> a;
-  static const char* known[] = {"--lens",      "--origin",    "--dir",       "--pol",
-                                "--wavelength-nm", "--intensity", "--source",  "--delta-rad",
-                                "--optical-path-mm", "--depth", "--tir",       "--ledge"};
-  for (int i = 1; i < argc; ++i) {
-    std::string k = argv[i];
-    if (k == "--help" || k == "-h") {
-      std::cout << kUsage;
-      return 0;
-    }
-    std::string v;
-    const auto eq = k.find('=');
-    if (eq != std::string::npos) {
-      v = k.substr(eq + 1);
-      k = k.substr(0, eq);
-    } else {
-      if (i + 1 >= argc) throw InputError("", k, "", "missing value");
-      v = argv[++i];
-    }
-    bool ok = false;
-    for (const char* n : known) ok |= k == n;
-    if (!ok) throw InputError("", k, v, "unknown option (see --help)");
-    if (a.count(k)) throw InputError("", k, v, "given twice");
-    a[k] = v;
-  }
-  for (const char* req : {"--lens", "--origin", "--dir", "--pol", "--wavelength-nm"}) {
-    if (!a.count(req)) throw InputError("", req, "", "required option missing (see --help)");
-  }
+  CLI::App app{"Traces one linearly polarized ray through the lens and prints {rays, events, absorbed} as "
+               "JSON.",
+               kProgram};
+  // Every value is read as text and checked below, so that a bad one is an InputError naming
+  // the option and the value; an option given twice is a usage error.
+  auto option = [&](const std::string& name, const std::string& help) { return app.add_option(name, a[name], help); };
+  option("--lens", "lens file (JSON)")->type_name("FILE.json")->required();
+  option("--origin", "ray origin (mm)")->type_name("x,y,z")->required();
+  option("--dir", "ray direction")->type_name("x,y,z")->required();
+  option("--pol", "polarization direction, perpendicular to --dir")->type_name("x,y,z")->required();
+  option("--wavelength-nm", "wavelength in 380-780 nm")->type_name("L")->required();
+  option("--intensity", "ray intensity (default 1)")->type_name("I");
+  option("--source", "coherence id, passed through to every ray (default 0)")->type_name("ch");
+  option("--delta-rad", "jump-wise phase δ of the ray in rad (default 0)")->type_name("d");
+  option("--optical-path-mm", "optical path O_p so far in mm (default 0)")->type_name("O");
+  option("--depth", "tracing depth in 0..64 (default 3)")->type_name("dT");
+  option("--tir", "total internal reflection ends the ray or splits it (default stop)")->type_name("stop|split");
+  option("--ledge", "rays hitting the ledge end there (the only mode)")->type_name("stop");
+  pmsim::cli::parse_or_exit(app, argc, argv);
+  auto given = [&](const std::string& name) { return app.count(name) > 0; };
 
   pmsim::PolarizedRay in;
   in.origin = parse_vec3("--origin", a["--origin"]);
@@ -102,31 +91,31 @@ int run(int argc, char** argv) {
     throw InputError("", "--pol", a["--pol"], "must be perpendicular to --dir (to 1e-6)");
   in.wavelength_nm = parse_double("--wavelength-nm", a["--wavelength-nm"]);
   if (!(in.wavelength_nm > 0.0)) throw InputError("", "--wavelength-nm", a["--wavelength-nm"], "must be > 0");
-  if (a.count("--intensity")) {
+  if (given("--intensity")) {
     in.intensity = parse_double("--intensity", a["--intensity"]);
     if (in.intensity < 0.0) throw InputError("", "--intensity", a["--intensity"], "must be ≥ 0");
   }
-  if (a.count("--source")) {
+  if (given("--source")) {
     const long s = parse_int("--source", a["--source"]);
     if (s < INT32_MIN || s > INT32_MAX) throw InputError("", "--source", a["--source"], "out of range");
     in.source = int(s);
   }
-  if (a.count("--delta-rad")) in.delta_rad = parse_double("--delta-rad", a["--delta-rad"]);
-  if (a.count("--optical-path-mm")) in.optical_path_mm = parse_double("--optical-path-mm", a["--optical-path-mm"]);
+  if (given("--delta-rad")) in.delta_rad = parse_double("--delta-rad", a["--delta-rad"]);
+  if (given("--optical-path-mm")) in.optical_path_mm = parse_double("--optical-path-mm", a["--optical-path-mm"]);
 
   pmsim::LensTraceOptions opt;
-  if (a.count("--depth")) {
+  if (given("--depth")) {
     const long d = parse_int("--depth", a["--depth"]);
     if (d < 0 || d > 64) throw InputError("", "--depth", a["--depth"], "must be in 0..64");
     opt.max_depth = int(d);
   }
-  if (a.count("--tir")) {
+  if (given("--tir")) {
     const std::string& t = a["--tir"];
     if (t == "stop") opt.tir = pmsim::TirMode::Stop;
     else if (t == "split") opt.tir = pmsim::TirMode::Split;
     else throw InputError("", "--tir", t, "expected stop or split");
   }
-  if (a.count("--ledge") && a["--ledge"] != "stop")
+  if (given("--ledge") && a["--ledge"] != "stop")
     throw InputError("", "--ledge", a["--ledge"], "expected stop");
 
   const pmsim::Lens lens(pmsim::load_lens_spec(a["--lens"]));
@@ -172,10 +161,10 @@ int main(int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const InputError& e) {
-    std::cerr << "pmsim-trace: " << e.what() << "\n";
+    std::cerr << kProgram << ": " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "pmsim-trace: " << e.what() << "\n";
+    std::cerr << kProgram << ": " << e.what() << "\n";
     return 1;
   }
 }

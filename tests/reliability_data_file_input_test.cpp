@@ -222,7 +222,7 @@ TEST(LensFileInput, AFolderGivenAsTheLensFileIsAnInputError) {
 }
 
 TEST(LensFileInput, NumberOverflowIsAnInputErrorNotAJsonException) {
-  // See /work/notes/reliability_findings.md F2 (load_lens_spec catches only parse_error).
+  // See docs/robustness.md, finding F2 (load_lens_spec catches only parse_error).
   ScratchDir d;
   const std::string path = d.file("l.json", R"({"glass":"N-BK7","radius_mm":1e400,"ledge_mm":1})");
   auto e = input_error_of([&] { load_lens_spec(path); });

@@ -180,7 +180,7 @@ TEST_F(FullDisk, ASceneSaveFailsAndKeepsTheOldFile) { check_write_fails_cleanly(
 TEST_F(FullDisk, AnExrWriteFailsAndKeepsTheOldFile) { check_write_fails_cleanly("exr"); }
 TEST_F(FullDisk, ATiffWriteFailsAndKeepsTheOldFile) { check_write_fails_cleanly("tif"); }
 // OpenImageIO's PNG writer reported success on a full disk, so write_image renamed a truncated
-// temporary over the user's file. Finding F9 (/work/notes/reliability_findings.md).
+// temporary over the user's file. Finding F9 (docs/robustness.md).
 TEST_F(FullDisk, APngWriteFailsAndKeepsTheOldFile) { check_write_fails_cleanly("png"); }
 
 TEST_F(FullDisk, WritesSucceedAgainOnceThereIsRoom) {

@@ -104,7 +104,7 @@ TEST(SceneFileInput, AGroupOfTheWrongTypeIsAnError) {
 
 TEST(SceneFileInput, NumbersBeyondDoubleRangeAreInputErrors) {
   // 1e400 is valid JSON syntax but overflows a double: nlohmann throws out_of_range (406), not a
-  // parse_error. See /work/notes/reliability_findings.md F1.
+  // parse_error. See docs/robustness.md, finding F1.
   ScratchDir d;
   auto e = input_error_of([&] { load(d, R"({"stage_deg": 1e400})"); });
   if (e) {

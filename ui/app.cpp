@@ -21,7 +21,7 @@ namespace pmsim::ui {
 namespace {
 
 
-// Objectives of the brief, in the order of the 1…4 shortcuts.
+// The objective turret, in the order of the 1…4 shortcuts.
 constexpr struct { double magnification, na; } kObjectives[] = {
     {4, 0.10}, {10, 0.25}, {40, 0.65}, {50, 0.85}};
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_policy.h"
 #include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "ui/asset_lists.h"
@@ -18,22 +19,7 @@
 namespace pmsim::ui {
 namespace {
 
-constexpr const char* kUsage = R"(pmsim - interactive polarizing microscope
-
-usage: pmsim [SCENE.json] [options]
-  Without SCENE, starts on the granite thin section between crossed polars
-  (assets/scenes/quartz_section_ortho.json, the default scene of pmsim-render).
-  --headless            draw the window off-screen (EGL surfaceless, else OSMesa), no display needed
-  --set key=value       change a scene key (repeatable; keys as in pmsim-render)
-  --frames N            run N frames (windowed: then quit; headless: before settling, default 3)
-  --script FILE         replay user actions (format: assets/ui/README.md)
-  --screenshot FILE     write the whole window as PNG at the end (headless: after convergence)
-  --no-settle           headless: do not wait for the image to converge before the screenshot
-  --timeout S           headless: give up waiting for convergence after S seconds (default 600)
-  --size WxH            window size (default 1280x800)
-  --threads N           renderer worker threads (default: all cores)
-  --report-fps          print the UI frame rate measured over the run
-)";
+constexpr const char* kProgram = "pmsim";
 
 struct Options {
   std::string scene_file;
@@ -46,10 +32,7 @@ struct Options {
   int width = 1280, height = 800, threads = 0;
 };
 
-[[noreturn]] void bad(const std::string& message) {
-  std::cerr << "pmsim: " << message << "\n" << kUsage;
-  std::exit(2);
-}
+[[noreturn]] void bad(const std::string& message) { cli::usage_error(kProgram, message); }
 
 int to_int(const std::string& flag, const std::string& v) {
   try {
@@ -63,34 +46,40 @@ int to_int(const std::string& flag, const std::string& v) {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) bad(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--headless") o.headless = true;
-    else if (a == "--set") o.sets.push_back(value());
-    else if (a == "--frames") o.frames = to_int(a, value());
-    else if (a == "--script") o.script = value();
-    else if (a == "--screenshot") o.screenshot = value();
-    else if (a == "--no-settle") o.settle = false;
-    else if (a == "--report-fps") o.report_fps = true;
-    else if (a == "--threads") o.threads = to_int(a, value());
-    else if (a == "--timeout") o.timeout_s = to_int(a, value());
-    else if (a == "--size") {
-      const std::string v = value();
-      const auto x = v.find('x');
-      if (x == std::string::npos) bad("--size " + v + ": expected WxH");
-      o.width = to_int(a, v.substr(0, x));
-      o.height = to_int(a, v.substr(x + 1));
-      if (o.width < 320 || o.height < 240) bad("--size " + v + ": at least 320x240");
-    } else if (!a.empty() && a[0] == '-') bad("unknown option " + a);
-    else if (o.scene_file.empty()) o.scene_file = a;
-    else bad("more than one scene file: " + a);
+  std::string frames, threads, timeout, size;
+  CLI::App app{"pmsim - interactive polarizing microscope", kProgram};
+  app.footer(
+      "Without SCENE, starts on the granite thin section between crossed polars\n"
+      "(assets/scenes/quartz_section_ortho.json, the default scene of pmsim-render).");
+  cli::last_value_wins(app);
+  app.add_option("SCENE", o.scene_file, "scene file (JSON)")->type_name("FILE.json");
+  app.add_flag("--headless", o.headless,
+               "draw the window off-screen (EGL surfaceless, else OSMesa), no display needed");
+  cli::add_repeatable(app, "--set", o.sets, "change a scene key (repeatable; keys as in pmsim-render)")
+      ->type_name("key=value");
+  app.add_option("--frames", frames, "run N frames (windowed: then quit; headless: before settling, default 3)")->type_name("N");
+  app.add_option("--script", o.script, "replay user actions (format: assets/ui/README.md)")->type_name("FILE");
+  app.add_option("--screenshot", o.screenshot, "write the whole window as PNG at the end (headless: after convergence)")
+      ->type_name("FILE");
+  bool no_settle = false;
+  app.add_flag("--no-settle", no_settle, "headless: do not wait for the image to converge before the screenshot");
+  app.add_option("--timeout", timeout, "headless: give up waiting for convergence after S seconds (default 600)")->type_name("S");
+  app.add_option("--size", size, "window size (default 1280x800)")->type_name("WxH");
+  app.add_option("--threads", threads, "renderer worker threads (default: all cores)")->type_name("N");
+  app.add_flag("--report-fps", o.report_fps, "print the UI frame rate measured over the run");
+  cli::parse_or_exit(app, argc, argv);
+  o.settle = !no_settle;
+  // Numbers are read as text and converted by to_int: non-negative integers only.
+  if (app.count("--frames")) o.frames = to_int("--frames", frames);
+  if (app.count("--threads")) o.threads = to_int("--threads", threads);
+  if (app.count("--timeout")) o.timeout_s = to_int("--timeout", timeout);
+  if (app.count("--size")) {
+    const std::string& v = size;
+    const auto x = v.find('x');
+    if (x == std::string::npos) bad("--size " + v + ": expected WxH");
+    o.width = to_int("--size", v.substr(0, x));
+    o.height = to_int("--size", v.substr(x + 1));
+    if (o.width < 320 || o.height < 240) bad("--size " + v + ": at least 320x240");
   }
   if (o.headless && o.screenshot.empty() && o.script.empty() && !o.report_fps)
     bad("--headless needs --screenshot FILE.png, --script FILE or --report-fps");

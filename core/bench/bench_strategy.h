@@ -19,7 +19,7 @@ enum class StrategyKind {
   Rgb,            // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
   Stratified,     // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
   Hero,           // bench-side: hero wavelength + n−1 equally spaced companions, per unit
-  PhysicalLens,   // bench-side: objective as an SML lens (see physical_lens_model.h)
+  PhysicalLens,   // bench-side: condenser and objective as SML lenses (physical_lens_model.h)
 };
 
 struct BenchStrategy {

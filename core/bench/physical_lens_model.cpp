@@ -10,6 +10,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/base/conventions.h"
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
@@ -222,7 +223,7 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
     std::vector<PolarizedRay> fw[2];
     std::vector<ObjectivePath> paths;
     CMat2 Jc;
-    const glm::dvec3 kz(0.0, 0.0, 1.0);
+    const glm::dvec3 kz = kLightDirection;
     if (condenser_jones(O, kz, Jc, bundle, fw[0])) {
       objective_paths(O, kz, paths, bundle, fw);
       for (const ObjectivePath& p : paths)
@@ -230,13 +231,12 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
     }
     if (!(axial > 0.0)) axial = 1.0;
   }
-  const double pol = scene.polarizer_deg * std::numbers::pi / 180.0;
-  const CVec2 p_in{std::cos(pol), std::sin(pol)};
+  const glm::dvec2 pol = polarizer_direction(scene.polarizer_deg);
+  const CVec2 p_in{pol.x, pol.y};
   glm::dvec2 outputs[2];
   int n_out = 1;
   if (scene.analyzer_in) {
-    const double a = scene.analyzer_deg * std::numbers::pi / 180.0;
-    outputs[0] = {std::cos(a), std::sin(a)};
+    outputs[0] = polarizer_direction(scene.analyzer_deg);
   } else {
     n_out = 2;
     outputs[0] = {1, 0};

@@ -1,8 +1,10 @@
 #pragma once
-// BENCH-SIDE physical-lens model of the conoscopic figure, until the renderer implements
-// optics.lens_model = physical (it currently reports "condenser, objective, Bertrand lens: ideal"):
-// the condenser and the objective are SML lenses (core/lens trace_lens: real glass, exact Fresnel
-// or Schlick, internal reflections up to optics.lens_depth = dT), the sample at their common focus.
+// BENCH-SIDE physical-lens model of the conoscopic figure: the bench's independent, per-pixel
+// implementation of optics.lens_model = physical, against which it measures the renderer's own
+// (core/microscope/lens_polarization.h, lens_ghosts.h) and from which it builds the reference of
+// the physical-lens scenes (reference_image.cpp). The condenser and the objective are SML lenses
+// (core/lens trace_lens: real glass, exact Fresnel or Schlick, internal reflections up to
+// optics.lens_depth = dT), the sample at their common focus.
 //
 // For every back-focal-plane pixel (a direction k through the sample, as in the ideal model):
 //  * the condenser ray that reaches the sample along k (found by tracing −k backward through the
@@ -16,9 +18,10 @@
 //    back-focal plane, mapped to the image by the depth-0 rays' own height-to-pixel relation, and
 //    adds its intensity there (light of different condenser directions is mutually incoherent).
 // Intensities are relative to the axial ray's depth-0 transmission through both lenses (the
-// exposure convention: empty stage, parallel polars, Y = 1 on the axis), as in the renderer's own
-// physical model (core/microscope/lens_polarization.h), which differs from this one in leaving the
-// ghost paths out. The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
+// exposure convention: empty stage, parallel polars, Y = 1 on the axis; docs/conventions.md), as in
+// the renderer's own physical model, which differs from this one in tracing one meridional profile
+// per lens instead of every pixel's rays and in adding the condenser's ghosts too (by reciprocity;
+// here the condenser is its depth-0 path only). The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
 // visible); the plate keeps its full dispersion. The Bertrand lens is ideal (it images the
 // back-focal plane; its own Fresnel losses are polarization-neutral to first order near the axis).
 #include "core/bench/bench_strategy.h"

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/conventions.h"
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/optics/cauchy.h"
@@ -138,9 +139,7 @@ glm::dmat3 biaxial_orientation(glm::dvec3 x_axis, glm::dvec3 z_axis) {
 }
 
 glm::dmat3 rotate_stage(const glm::dmat3& crystal_to_lab, double stage_rad) {
-  const double c = std::cos(stage_rad), s = std::sin(stage_rad);
-  const glm::dmat3 rz(glm::dvec3(c, s, 0), glm::dvec3(-s, c, 0), glm::dvec3(0, 0, 1));
-  return rz * crystal_to_lab;
+  return stage_rotation(stage_rad) * crystal_to_lab;
 }
 
 double optic_angle_2v_rad(double nalpha, double nbeta, double ngamma) {

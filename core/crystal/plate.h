@@ -9,8 +9,7 @@
 // the plate are neglected); absorption and optical activity are perturbations of the linear,
 // lossless modes. Details and approximations: plate.cpp.
 //
-// Phase convention: a plane wave is e^{i(k·r − ωt)}, so a path adds phase +k0·n·L and the slow
-// wave's Jones amplitude carries the larger phase.
+// Phase convention (docs/conventions.md): e^{i(k·r − ωt)}, a path adds phase +k0·n·L.
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 

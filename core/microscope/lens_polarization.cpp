@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/conventions.h"
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
@@ -18,7 +19,7 @@ LensSpec physical_lens_spec(int side) {
   const double half = 0.5 * Lens(spec).geometry().thickness_mm();
   spec.thickness_mm.reset();
   spec.center = {0.0, 0.0, side * (kLensWorkingDistanceMm + half)};
-  spec.axis = {0.0, 0.0, 1.0};
+  spec.axis = kLightDirection;
   return spec;
 }
 

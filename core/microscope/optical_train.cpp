@@ -5,27 +5,26 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/conventions.h"
+
 namespace pmsim {
 
 TrainState make_train(const Scene& scene, const CompensatorPlate& comp, double wavelength_nm) {
   TrainState t;
   t.wavelength_nm = wavelength_nm;
-  const double p = scene.polarizer_deg * std::numbers::pi / 180.0;
-  t.polarizer = {std::cos(p), std::sin(p)};
+  t.polarizer = polarizer_direction(scene.polarizer_deg);
   if (scene.analyzer_in) {
-    const double a = scene.analyzer_deg * std::numbers::pi / 180.0;
     t.outputs = 1;
-    t.output[0] = {std::cos(a), std::sin(a)};
+    t.output[0] = polarizer_direction(scene.analyzer_deg);
   } else {
     t.outputs = 2;
-    t.output[0] = {1.0, 0.0};
-    t.output[1] = {0.0, 1.0};
+    t.output[0] = glm::dvec2(kLabEast);
+    t.output[1] = glm::dvec2(kLabNorth);
   }
   if (comp.present) {
     t.comp_modes = 2;
-    const double r = std::sqrt(0.5);
-    t.comp_dir[0] = {-r, r};  // fast NW–SE
-    t.comp_dir[1] = {r, r};   // slow NE–SW
+    t.comp_dir[0] = glm::dvec2(kSlotFast);
+    t.comp_dir[1] = glm::dvec2(kSlotSlow);
     const double g = compensator_retardation_nm(comp, wavelength_nm);
     const double h = 0.5;
     const double gp = compensator_retardation_nm(comp, wavelength_nm + h);
@@ -34,7 +33,7 @@ TrainState make_train(const Scene& scene, const CompensatorPlate& comp, double w
     t.chi_rad = two_pi * g / wavelength_nm;
     // d(2πΓ/λ)/dλ = 2π(Γ'/λ − Γ/λ²)
     t.dchi_dnm = two_pi * ((gp - gm) / (2 * h) / wavelength_nm - g / (wavelength_nm * wavelength_nm));
-    t.comp_jones = plate_jones(comp.spec, glm::dvec3(0.0, 0.0, 1.0), wavelength_nm);
+    t.comp_jones = plate_jones(comp.spec, kLightDirection, wavelength_nm);
   }
   return t;
 }

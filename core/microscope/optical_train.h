@@ -3,7 +3,8 @@
 // → analyzer, in the ideal-lens model where every lens maps the transverse basis of a ray
 // (core/crystal/plate.h transverse_basis: a ≈ east, b ≈ north) onto the lab x, y without changing
 // the polarization. The incident field is the unit vector along the polarizer, so an isotropic
-// loss-free sample between parallel polars transmits exactly 1 (the exposure reference, Y = 1).
+// loss-free sample between parallel polars transmits exactly 1 (the exposure reference, Y = 1;
+// docs/conventions.md).
 #include <glm/vec2.hpp>
 
 #include "core/microscope/compensator.h"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/conventions.h"
 #include "core/materials/medium.h"
 #include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
@@ -25,7 +26,7 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
   x_frac = std::clamp(x_frac, 0.0, 1.0);
   y_frac = std::clamp(y_frac, 0.0, 1.0);
   const glm::dvec2 f = field_from_pixel(W, H, x_frac * W, y_frac * H);
-  glm::dvec3 k{0.0, 0.0, 1.0};
+  glm::dvec3 k = kLightDirection;
   const bool cono_bfp = scene.mode == ViewMode::Cono && scene.bertrand_in;
   if (cono_bfp) {
     if (!bfp_direction(scene, f, k)) return p;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/base/conventions.h"
+
 namespace pmsim {
 
 glm::dvec2 field_from_pixel(int width, int height, double px, double py) {
@@ -12,7 +14,7 @@ glm::dvec2 field_from_pixel(int width, int height, double px, double py) {
 }
 
 StageToSample::StageToSample(double stage_deg) {
-  const double a = -stage_deg * std::numbers::pi / 180.0;
+  const double a = -radians(stage_deg);
   c = std::cos(a);
   s = std::sin(a);
 }
@@ -27,7 +29,7 @@ bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air) {
   if (rho > 0) {
     k_air = {sin_t * f.x / rho, sin_t * f.y / rho, cos_t};
   } else {
-    k_air = {0.0, 0.0, 1.0};
+    k_air = kLightDirection;
   }
   return true;
 }

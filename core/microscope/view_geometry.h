@@ -1,7 +1,6 @@
 #pragma once
-// Where a pixel looks. Field coordinates: x east, y north, the shorter image side spans −1…1 (so
-// the conoscopic disk of radius 1 is inscribed in the image). The sample turns with the stage
-// (counter-clockwise as the observer sees it); the back focal plane does not.
+// Where a pixel looks: field coordinates, the stage and the conoscopic mapping of
+// docs/conventions.md (field x east, y north, the shorter image side spanning −1…1).
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Fresnel amplitude ratios at a plane interface between two isotropic, non-absorbing media.
 //
-// Conventions (fixed once, used everywhere; see polarization_frame.h for the vectors):
+// Conventions (docs/conventions.md; polarization_frame.h for the vectors):
 //  * eta = n_t / n_i (the paper's n21 = n2/n1). cos_i ≥ 0 is measured from the normal on the
 //    incident side; a negative cos_i means the ray arrives from the other side, so the sides swap
 //    (eta → 1/eta, cos_i → −cos_i), as in pbrt's FrDielectric.

@@ -2,6 +2,7 @@
 // Jones calculus for fully polarized light (Born & Wolf §10.8; Hecht §8.12). A JonesVector holds
 // the complex transverse field in a 2-D basis that the caller names; a JonesMatrix maps one such
 // field to another. Used where rays of one source and wavelength are summed coherently.
+// Basis and sign conventions: docs/conventions.md.
 #include <complex>
 
 #include <glm/mat2x2.hpp>

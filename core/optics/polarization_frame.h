@@ -1,5 +1,5 @@
 #pragma once
-// The polarization frame at a hit (fixed once for the whole project):
+// The polarization frame at a hit (docs/conventions.md, one frame for the whole project):
 //   s   = unit(d × N)      perpendicular to the plane of incidence (E⊥)
 //   p_i = d × s            in the plane of incidence, incident ray   (s × p_i =  d)
 //   p_t = t × s            refracted ray                             (s × p_t =  t)
