@@ -10,6 +10,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/crystal/crystal_cut.h"
 #include "core/materials/medium.h"
 #include "core/microscope/lens_ghosts.h"
 #include "core/microscope/sample_source.h"
@@ -24,6 +25,7 @@ namespace {
 glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
 glm::dmat3 sample_orientation(const Crystal& c, const SampleSettings& s) {
+  if (s.cut) return cut_plate_orientation(c, s.cut->plane, s.cut->north);  // checked by check_scene
   if (c.symmetry() == CrystalSymmetry::Biaxial) return biaxial_orientation(vec(s.x_axis), vec(s.z_axis));
   return uniaxial_orientation(vec(s.optic_axis));
 }
