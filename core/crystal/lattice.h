@@ -6,8 +6,8 @@
 // frame", also used by EBSD software with Bunge angles): e1 ∥ a, e3 ∥ c* (the normal of (001)),
 // e2 = e3 × e1. So a = a·(1, 0, 0); b = b·(cos γ, sin γ, 0); c has c·cos β along e1. For a
 // monoclinic cell with b unique (α = γ = 90°) e2 ∥ b and c lies in the e1–e3 plane, tilted by
-// β − 90° from e3 toward −e1 (Giacovazzo et al., "Fundamentals of Crystallography", 3rd ed. 2011,
-// §2.E; International Tables for Crystallography vol. B §1.1).
+// β − 90° from e3 toward −e1 (Giacovazzo et al., "Fundamentals of Crystallography", 3rd ed. 2011;
+// International Tables for Crystallography vol. B §1.1).
 #include <array>
 #include <string>
 #include <string_view>
@@ -27,7 +27,7 @@ struct UnitCell {
   double alpha_deg = 90, beta_deg = 90, gamma_deg = 90;      // α = b∧c, β = c∧a, γ = a∧b
 };
 
-// The constraints of each system on the cell (Giacovazzo 2011 table 1.2), with hexagonal and
+// The constraints of each system on the cell (Giacovazzo 2011), with hexagonal and
 // trigonal in the hexagonal setting (a = b, α = β = 90°, γ = 120°; rhombohedral cells are given in
 // that setting too) and monoclinic with b unique (α = γ = 90°, β ≠ 90°). Edges must be > 0, angles
 // in (0°, 180°) with a real cell volume. Throws BadValue (core/base/json_reader.h) naming the rule.
