@@ -115,11 +115,12 @@ glm::dvec3 north_of(const Cut& c) {
 }  // namespace
 
 // Tolerance of the measurement: 0.05°. In parallel monochromatic light at normal incidence the
-// rendered brightness is exactly the sin² law (a plate's eigenmodes at normal incidence vibrate
-// along the axes of the central section), so fit and refinement leave only the parabola's error
-// near the minimum (the sin² law is quartic-free to O(h²) = 3e-4 rad² for h = 1°) and float
-// accumulation of the image (1e-7 relative); 0.05° is far above both and far below the published
-// spread (several degrees).
+// rendered brightness follows the sin² law exactly (a plate's eigenmodes at normal incidence
+// vibrate along the axes of the central section), so the Fourier fit is exact up to the float
+// accumulation of the image (1e-7 relative, i.e. ~1e-6° in θ0), and the parabola refinement moves
+// a minimum that is off by δ by less than δ·h²·(16/12) ≈ 5e-4·δ for h = 1° (the quartic term of
+// 1 − cos 4x). 0.05° is far above both and far below the published spreads (several degrees), so
+// a wrong orientation (side, axis, cut frame) cannot pass.
 TEST(ExtinctionFromRenders, MonoclinicPrismsCutParallelTo010WithCNorth) {
   struct Case { Cut cut; double lo_deg, hi_deg; };
   // Published ranges of Z ∧ c (the extinction angle to the c trace and to the {110} cleavage
