@@ -10,7 +10,8 @@
 //        "transmittance": {"o": [...], "e": [...]} or {"alpha": [...], "beta": [...], "gamma": [...]}},
 //    "rotatory_power": {"source": "...", "A_deg_um2_per_mm": A, "lambda0_um": l0,
 //        "handedness": "right" | "left"},
-//    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used)}
+//    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used),
+//    crystallography keys: see core/crystal/mineral_crystallography.h}
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -23,6 +24,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_crystallography.h"
+#include "core/base/json_reader.h"
 #include "core/base/asset_locator.h"
 #include "core/base/asset_names.h"
 #include "core/base/input_error.h"
@@ -116,12 +119,15 @@ struct Reader {
 
 }  // namespace
 
-Crystal load_mineral_file(const std::string& path) {
+Crystal load_mineral_file(const std::string& path) { return load_mineral_file(path, nullptr); }
+
+Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystallography>* crystallography) {
   const json j = read_json_file(path, "mineral file");
   const Reader r{path};
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
   r.only_keys(j, "", {"name", "symmetry", "source", "indices", "absorption", "rotatory_power",
-                      "optic_angle_2vz_deg", "pleochroism", "note", "description"});
+                      "optic_angle_2vz_deg", "pleochroism", "note", "description", "crystal_system",
+                      "unit_cell", "optical_orientation", "cleavage", "habit", "twins"});
   const json& name_v = r.need(j, "name", "name");
   if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
   const json& src_v = r.need(j, "source", "source");
@@ -211,6 +217,9 @@ Crystal load_mineral_file(const std::string& path) {
     rd.lambda0_um = l0;
     c.set_rotatory_power(rd);
   }
+  // Read (and so checked) whether or not the caller keeps it: a bad block fails the load.
+  auto cr = read_mineral_crystallography(JsonReader(j, path), c.symmetry());
+  if (crystallography) *crystallography = std::move(cr);
   return c;
 }
 
@@ -220,6 +229,7 @@ std::filesystem::path mineral_dir() { return std::filesystem::path(asset_dir()) 
 
 struct Library {
   std::map<std::string, Crystal> by_name;  // lower-case name → crystal (node-stable references)
+  std::map<std::string, MineralCrystallography> crystallography;  // minerals whose file has it
 };
 
 const Library& library() {
@@ -235,10 +245,12 @@ const Library& library() {
     std::sort(files.begin(), files.end());
     AssetNames defined("mineral");
     for (const auto& f : files) {
-      Crystal c = load_mineral_file(f.string());
+      std::optional<MineralCrystallography> cr;
+      Crystal c = load_mineral_file(f.string(), &cr);
       defined.add(c.name(), f.string());
       const std::string key = lower_case(c.name());
       l.by_name.emplace(key, std::move(c));
+      if (cr) l.crystallography.emplace(key, std::move(*cr));
     }
     return l;
   }();
@@ -256,6 +268,13 @@ const Crystal& find_mineral(std::string_view name) {
     throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
   }
   return it->second;
+}
+
+const MineralCrystallography* find_mineral_crystallography(std::string_view name) {
+  find_mineral(name);  // an unknown name throws as there
+  const Library& lib = library();
+  const auto it = lib.crystallography.find(lower_case(name));
+  return it == lib.crystallography.end() ? nullptr : &it->second;
 }
 
 std::vector<std::string> mineral_names() {

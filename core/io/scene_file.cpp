@@ -13,6 +13,7 @@
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/base/text.h"
+#include "core/crystal/lattice.h"
 #include "core/microscope/scene_check.h"
 
 namespace pmsim {
@@ -76,6 +77,25 @@ CrystalIndices as_crystal(const json& v) {
   check_crystal_indices(c);
   return c;
 }
+// sample.cut: {"plane": "(hkl)", "north": "[uvw]"}, the text kept as written (save → load gives
+// it back unchanged); its syntax is checked here, its fit to the mineral by check_scene.
+SampleCut as_cut(const json& v) {
+  if (!v.is_object() || v.size() != 2 || !v.contains("plane") || !v.contains("north"))
+    throw BadValue{"expected {\"plane\": \"(hkl)\", \"north\": \"[uvw]\"}"};
+  SampleCut c{string_value(v.at("plane")), string_value(v.at("north"))};
+  try {
+    parse_miller_plane(c.plane);
+  } catch (const BadValue& b) {
+    throw BadValue{"plane " + c.plane + ": " + b.why};
+  }
+  try {
+    parse_lattice_direction(c.north);
+  } catch (const BadValue& b) {
+    throw BadValue{"north " + c.north + ": " + b.why};
+  }
+  return c;
+}
+
 json crystal_json(const CrystalIndices& c) {
   if (c.uniaxial) return {{"no", c.no}, {"ne", c.ne}};
   return {{"nalpha", c.nalpha}, {"nbeta", c.nbeta}, {"ngamma", c.ngamma}};
@@ -143,6 +163,17 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.sample.x_axis; }},
       {"sample.z_axis", [](Scene& s, const json& v) { s.sample.z_axis = as_vec3(v); },
        [](const Scene& s) -> json { return s.sample.z_axis; }},
+      {"sample.cut",
+       [](Scene& s, const json& v) {
+         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+           s.sample.cut.reset();
+         else
+           s.sample.cut = as_cut(v);
+       },
+       [](const Scene& s) -> json {
+         return s.sample.cut ? json{{"plane", s.sample.cut->plane}, {"north", s.sample.cut->north}}
+                             : json(nullptr);
+       }},
       {"sample.section", [](Scene& s, const json& v) { s.sample.section = as_string(v); },
        [](const Scene& s) -> json { return s.sample.section; }},
       {"sample.medium", [](Scene& s, const json& v) { s.sample.medium = as_string(v); },

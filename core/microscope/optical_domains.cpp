@@ -3,6 +3,7 @@
 #include <array>
 #include <numbers>
 
+#include "core/crystal/crystal_cut.h"
 
 namespace pmsim {
 
@@ -11,6 +12,7 @@ namespace {
 glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
 glm::dmat3 sample_orientation(const Crystal& c, const SampleSettings& s) {
+  if (s.cut) return cut_plate_orientation(c, s.cut->plane, s.cut->north);  // checked by check_scene
   if (c.symmetry() == CrystalSymmetry::Biaxial) return biaxial_orientation(vec(s.x_axis), vec(s.z_axis));
   return uniaxial_orientation(vec(s.optic_axis));
 }

@@ -37,6 +37,15 @@ struct CondenserSettings {
   double na = 0.9;               // condenser.na (the cone that lights the conoscopic figure)
 };
 
+// sample.cut: a plate cut along a crystal plane of a library mineral with unit-cell and optical-
+// orientation data, and the lattice direction in it that points north at stage 0° (text as
+// written, e.g. {"plane": "(010)", "north": "[001]"}; core/crystal/crystal_cut.h). When set it
+// replaces optic_axis / x_axis / z_axis for plates and wedges.
+struct SampleCut {
+  std::string plane;  // "(hkl)"
+  std::string north;  // "[uvw]"
+};
+
 struct SampleSettings {
   SampleType type = SampleType::Plate;         // sample.type
   std::string mineral = "quartz";              // sample.mineral (a name in assets/minerals)
@@ -45,6 +54,7 @@ struct SampleSettings {
   std::array<double, 3> optic_axis{1, 0, 0};   // sample.optic_axis (uniaxial), lab frame at stage 0°
   std::array<double, 3> x_axis{1, 0, 0};       // sample.x_axis (biaxial nα direction)
   std::array<double, 3> z_axis{0, 0, 1};       // sample.z_axis (biaxial nγ direction)
+  std::optional<SampleCut> cut;                // sample.cut (replaces the three axes when set)
   std::string section;                         // sample.section (thin-section file in assets/sections)
   std::string medium = "mounting";             // sample.medium (mounting medium name)
 };

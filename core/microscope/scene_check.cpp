@@ -8,6 +8,8 @@
 
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
+#include "core/crystal/crystal_cut.h"
+#include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {
@@ -38,6 +40,33 @@ std::string vec_text(const std::array<double, 3>& v) {
   t += ']';
   return t;
 }
+// sample.cut needs a library mineral with crystallographic data, and north in the plane; the
+// syntax of both texts was checked when the key was read.
+void check_cut(const Scene& s, const std::string& file) {
+  const SampleCut& cut = *s.sample.cut;
+  std::string shown_cut = "{\"plane\":\"";  // appended: see vec_text
+  shown_cut += cut.plane;
+  shown_cut += "\",\"north\":\"";
+  shown_cut += cut.north;
+  shown_cut += "\"}";
+  require(!s.sample.crystal, file, "sample.cut", shown_cut,
+          "a cut needs a library mineral's lattice; sample.crystal gives indices only");
+  if (!mineral_known(s.sample.mineral)) return;  // reported on sample.mineral
+  const MineralCrystallography* m = find_mineral_crystallography(s.sample.mineral);
+  require(m && m->orientation, file, "sample.cut", shown_cut,
+          "mineral '" + s.sample.mineral + "' has no unit cell and optical orientation data");
+  const MillerIndices plane = parse_miller_plane(cut.plane);
+  const LatticeDirection north = parse_lattice_direction(cut.north);
+  const double off_deg = direction_plane_angle_deg(m->cell, plane, north);
+  try {
+    crystal_to_lab_of_cut(m->cell, plane, north);
+  } catch (const BadValue&) {
+    throw InputError(file, "sample.cut.north", cut.north,
+                     "makes " + num(off_deg) + "° with the plane " + cut.plane + " of " +
+                         s.sample.mineral + "; north must lie in the section plane (to 1e-6)");
+  }
+}
+
 }  // namespace
 
 void check_pixel_count(const Scene& s, const std::string& file, const char* key) {
@@ -108,6 +137,7 @@ void check_scene(const Scene& s, const std::string& file) {
     require(mineral_known(s.sample.mineral), file, "sample.mineral", s.sample.mineral,
             "unknown mineral (known: " + known_minerals_list() + ")");
   }
+  if (s.sample.cut) check_cut(s, file);
   if (s.sample_in && s.sample.type == SampleType::Section)
     require(section_known(s.sample.section), file, "sample.section", s.sample.section,
             "no such thin-section file in assets/sections");

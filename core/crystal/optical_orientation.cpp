@@ -1,0 +1,76 @@
+#include "core/crystal/optical_orientation.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "core/base/json_reader.h"
+
+namespace pmsim {
+
+namespace {
+
+int index_of(IndicatrixAxis a) { return static_cast<int>(a); }
+
+// Columns in X, Y, Z order from the three axes placed, made right-handed by the sign of the last
+// (an indicatrix axis is a line, not an arrow: its sign carries no information).
+glm::dmat3 frame(const glm::dvec3 (&v)[3]) {
+  glm::dmat3 m(v[0], v[1], v[2]);
+  if (glm::dot(glm::cross(m[0], m[1]), m[2]) < 0) m[2] = -m[2];
+  return m;
+}
+
+}  // namespace
+
+char indicatrix_axis_name(IndicatrixAxis a) { return "XYZ"[index_of(a)]; }
+
+glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const OpticalOrientation& o) {
+  const bool uniaxial_system = system == CrystalSystem::Tetragonal ||
+                               system == CrystalSystem::Hexagonal || system == CrystalSystem::Trigonal;
+  const glm::dmat3 d = direct_basis(cell);
+  const glm::dvec3 a = glm::normalize(d[0]), b = glm::normalize(d[1]), c = glm::normalize(d[2]);
+  switch (o.kind) {
+    case OpticalOrientation::Kind::Uniaxial: {
+      if (!uniaxial_system)
+        throw BadValue{std::string("a uniaxial orientation (optic axis ∥ c) needs a tetragonal, hexagonal or "
+                                   "trigonal crystal, not ") + crystal_system_name(system)};
+      const glm::dvec3 x = glm::normalize(glm::cross(b, c));  // ⟂ c, in the a direction's half
+      return glm::dmat3(x, glm::cross(c, x), c);
+    }
+    case OpticalOrientation::Kind::Orthorhombic: {
+      if (system != CrystalSystem::Orthorhombic)
+        throw BadValue{std::string("\"a\"/\"b\"/\"c\" → X/Y/Z assignments are for orthorhombic crystals, not ") +
+                       crystal_system_name(system)};
+      const int ia = index_of(o.along_a), ib = index_of(o.along_b), ic = index_of(o.along_c);
+      if (ia == ib || ib == ic || ia == ic) throw BadValue{"a, b and c must take X, Y and Z once each"};
+      glm::dvec3 v[3];
+      v[ia] = a, v[ib] = b, v[ic] = c;
+      return frame(v);
+    }
+    case OpticalOrientation::Kind::Monoclinic: {
+      if (system != CrystalSystem::Monoclinic)
+        throw BadValue{std::string("a monoclinic orientation (axis ∥ b, angle in the a–c plane) needs a "
+                                   "monoclinic crystal, not ") + crystal_system_name(system)};
+      if (o.inclined == o.along_b) throw BadValue{"the inclined axis cannot also be the one ∥ b"};
+      if (!(std::isfinite(o.angle_deg) && o.angle_deg >= 0 && o.angle_deg <= 90))
+        throw BadValue{"the angle to the crystal axis must be in [0, 90]°"};
+      // In the a–c plane (⟂ b), rotating +c toward +a sweeps the obtuse angle β between them
+      // (β > 90° in the standard setting); the acute side is the other way. Likewise from +a.
+      const glm::dvec3 ref = o.from_a ? a : c, other = o.from_a ? c : a;
+      const glm::dvec3 toward = glm::normalize(other - glm::dot(other, ref) * ref);  // ⟂ ref, +other side
+      const double t = o.angle_deg * std::numbers::pi / 180.0;
+      const double s = o.side == MonoclinicSide::ObtuseBeta ? 1.0 : -1.0;
+      const glm::dvec3 inclined = std::cos(t) * ref + s * std::sin(t) * toward;
+      glm::dvec3 v[3];
+      v[index_of(o.along_b)] = b;
+      v[index_of(o.inclined)] = inclined;
+      const int third = 3 - index_of(o.along_b) - index_of(o.inclined);
+      v[third] = glm::normalize(glm::cross(b, inclined));
+      return frame(v);
+    }
+  }
+  throw BadValue{"unknown optical orientation"};
+}
+
+}  // namespace pmsim
