@@ -1,7 +1,6 @@
 #include "core/microscope/scene_check.h"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -19,16 +18,8 @@ void require(bool ok, const std::string& file, const char* key, const std::strin
              const std::string& why) {
   if (!ok) throw InputError(file, key, value, why);
 }
-// Integers exactly, other numbers in their shortest round-trip form (0.3, not 0.29999…).
-std::string num(double v) {
-  char buf[64];
-  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15) {
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
+// Numbers in messages as the readers show them (core/base/json_reader.h).
+std::string num(double v) { return number_text(v); }
 // "[x,y,z]" (appending, not "[" + …: GCC 12 warns falsely on that pattern, PR 105651).
 std::string vec_text(const std::array<double, 3>& v) {
   std::string t = "[";
