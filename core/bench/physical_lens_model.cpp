@@ -153,152 +153,235 @@ void objective_paths(const Optics& O, const glm::dvec3& k, std::vector<Objective
   }
 }
 
+// The bench's copy of the scene: geometry only (the modes are fitted here, per unit), and 32
+// bands unless the scene asks for a number.
+Scene bench_scene(const Scene& scene_in) {
+  Scene scene = scene_in;
+  scene.render.strategy = RenderStrategy::Exact;
+  if (scene.render.wavelengths <= 0) scene.render.wavelengths = 32;
+  return scene;
+}
+
+// Per crystal domain, the plate prepared at the three ModalFit anchors.
+std::vector<std::array<PreparedPlate, 3>> modal_anchors(const EvaluationPlan& plan) {
+  std::vector<std::array<PreparedPlate, 3>> anchors(plan.domains().size());
+  for (std::size_t d = 0; d < plan.domains().size(); ++d)
+    if (plan.domains()[d].crystal)
+      for (int a = 0; a < 3; ++a) anchors[d][a] = plan.prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  return anchors;
+}
+
+Optics make_optics(const Lens& objective, const Lens& condenser, const Scene& scene) {
+  Optics optics;
+  optics.objective = &objective.geometry();
+  optics.condenser = &condenser.geometry();
+  optics.media = objective.media(kLensNm);
+  optics.opt.max_depth = scene.optics.lens_depth;
+  optics.opt.fresnel = scene.optics.fresnel;
+  optics.opt.tir = TirMode::Stop;
+  optics.bfp_z_mm = optics.objective->back_vertex().z + 2.0;
+  return optics;
+}
+
+// Height-to-pixel relation of the depth-0 rays along azimuth 0: r(ρ), ρ = sinθ/NA, sampled at
+// kSamples + 1 equal steps of ρ; a ghost crossing the back-focal plane at r lands where the
+// depth-0 ray of the nearest r does.
+struct BfpHeightTable {
+  static constexpr int kSamples = 512;
+  std::vector<double> r_mm;  // −1 where no depth-0 ray leaves
+  int width_px = 0, height_px = 0;
+  double disk_radius_px = 0.0;
+
+  // The pixel (y·width + x) of the crossing at radius r_mm, azimuth_rad; −1 off the table/image.
+  long pixel(double bfp_r_mm, double azimuth_rad) const {
+    int best = -1;
+    double bd = 1e300;
+    for (int i = 0; i <= kSamples; ++i)
+      if (r_mm[i] >= 0 && std::fabs(r_mm[i] - bfp_r_mm) < bd) {
+        bd = std::fabs(r_mm[i] - bfp_r_mm);
+        best = i;
+      }
+    if (best < 0) return -1;
+    const double rho = static_cast<double>(best) / kSamples;
+    const double px = 0.5 * width_px + rho * std::cos(azimuth_rad) * disk_radius_px;
+    const double py = 0.5 * height_px - rho * std::sin(azimuth_rad) * disk_radius_px;
+    const long x = static_cast<long>(std::floor(px)), y = static_cast<long>(std::floor(py));
+    if (x < 0 || y < 0 || x >= width_px || y >= height_px) return -1;
+    return y * width_px + x;
+  }
+};
+
+BfpHeightTable bfp_height_table(const Optics& optics, double objective_na, int width_px, int height_px) {
+  BfpHeightTable table;
+  table.r_mm.assign(BfpHeightTable::kSamples + 1, -1.0);
+  table.width_px = width_px;
+  table.height_px = height_px;
+  table.disk_radius_px = 0.5 * std::min(width_px, height_px);
+  LensBundle bundle;
+  std::vector<PolarizedRay> fw[2];
+  std::vector<ObjectivePath> paths;
+  for (int i = 0; i <= BfpHeightTable::kSamples; ++i) {
+    const double s = std::min(0.999999, objective_na * i / BfpHeightTable::kSamples);
+    objective_paths(optics, {s, 0.0, std::sqrt(1 - s * s)}, paths, bundle, fw);
+    for (const ObjectivePath& p : paths)
+      if (p.main) table.r_mm[i] = p.bfp_r_mm;
+  }
+  return table;
+}
+
+// Unit → pixel (one unit per lit pixel in the conoscopic view); −1 for units no pixel refers to.
+std::vector<long> pixel_of_units(const EvaluationPlan& plan) {
+  std::vector<long> pixel_of_unit(plan.units().size(), -1);
+  for (long i = 0; i < static_cast<long>(plan.width()) * plan.height(); ++i)
+    for (int ref = plan.pixel_offset()[i]; ref < plan.pixel_offset()[i + 1]; ++ref) pixel_of_unit[plan.refs()[ref].unit] = i;
+  return pixel_of_unit;
+}
+
+// Exposure convention (issue 3): amplitudes relative to the axial ray's depth-0 path through
+// both lenses, so that an empty stage between parallel polars gives Y = 1 on the axis.
+double axial_intensity(const Optics& optics) {
+  double axial = 1.0;
+  LensBundle bundle;
+  std::vector<PolarizedRay> fw[2];
+  std::vector<ObjectivePath> paths;
+  CMat2 condenser;
+  const glm::dvec3 kz = kLightDirection;
+  if (condenser_jones(optics, kz, condenser, bundle, fw[0])) {
+    objective_paths(optics, kz, paths, bundle, fw);
+    for (const ObjectivePath& p : paths)
+      if (p.main) axial = std::norm((p.jones * (condenser * CVec2{1.0, 0.0})).x);
+  }
+  if (!(axial > 0.0)) axial = 1.0;
+  return axial;
+}
+
+// The detected polarizations: the analyzer's direction, or both lab axes without analyzer.
+struct DetectedOutputs {
+  glm::dvec2 dir[2];
+  int count = 1;
+};
+
+DetectedOutputs detected_outputs(const Scene& scene) {
+  DetectedOutputs out;
+  if (scene.analyzer_in) {
+    out.dir[0] = polarizer_direction(scene.analyzer_deg);
+  } else {
+    out.count = 2;
+    out.dir[0] = {1, 0};
+    out.dir[1] = {0, 1};
+  }
+  return out;
+}
+
+// Detected intensity of one band through the plate's two modes: the sample field e_s is split
+// on the (non-orthogonal) mode polarizations e1, e2 with the dual basis d1, d2, each part carried
+// by its mode transmission and the objective path; fast mode phase −φ/2, slow +φ/2, so
+// |c1 e^{−iφ/2} + c2 e^{iφ/2}|² = |c1|² + |c2|² + 2 Re(c1 c2* e^{−iφ}), the cross term averaged
+// over the band Δλ: × sinc(½ dφ/dλ · Δλ), φ = 2π Γ/λ.
+double crystal_band_intensity(const ModalPoint& m, const CVec2& e_s, const CMat2& path_jones, double wavelength_nm,
+                              double band_nm, const DetectedOutputs& outputs) {
+  glm::dvec2 e1 = m.e1, e2 = m.e2;
+  double det = e1.x * e2.y - e1.y * e2.x;
+  if (std::fabs(det) < 1e-9) {
+    e2 = {-e1.y, e1.x};
+    det = 1.0;
+  }
+  const glm::dvec2 d1{e2.y / det, -e2.x / det}, d2{-e1.y / det, e1.x / det};
+  const cd a1 = m.t1 * (d1.x * e_s.x + d1.y * e_s.y), a2 = m.t2 * (d2.x * e_s.x + d2.y * e_s.y);
+  const CVec2 f1 = path_jones * CVec2{a1 * e1.x, a1 * e1.y};
+  const CVec2 f2 = path_jones * CVec2{a2 * e2.x, a2 * e2.y};
+  const double lambda = wavelength_nm, two_pi = 2.0 * std::numbers::pi;
+  const double phi = two_pi * m.gamma_nm / lambda;
+  const double dphi = two_pi * (m.dgamma_dnm / lambda - m.gamma_nm / (lambda * lambda));
+  const double x = 0.5 * dphi * band_nm;
+  const double sinc = std::fabs(x) < 1e-8 ? 1.0 : std::sin(x) / x;
+  double t = 0.0;
+  for (int o = 0; o < outputs.count; ++o) {
+    const cd c1 = outputs.dir[o].x * f1.x + outputs.dir[o].y * f1.y;
+    const cd c2 = outputs.dir[o].x * f2.x + outputs.dir[o].y * f2.y;
+    t += std::norm(c1) + std::norm(c2) + 2.0 * std::real(c1 * std::conj(c2) * std::polar(1.0, -phi)) * sinc;
+  }
+  return t;
+}
+
+// Everything that is the same for every unit.
+struct BenchInputs {
+  const EvaluationPlan& plan;
+  const SpectralLevel& level;
+  const Optics& optics;
+  const std::vector<std::array<PreparedPlate, 3>>& anchors;
+  const BfpHeightTable& bfp;
+  const std::vector<long>& pixel_of_unit;
+  CVec2 polarizer;  // lab x, y
+  const DetectedOutputs& outputs;
+  double axial;
+};
+
+// Scratch of one TBB task, reused unit after unit.
+struct UnitScratch {
+  LensBundle bundle;
+  std::vector<PolarizedRay> fw[2];
+  std::vector<ObjectivePath> paths;
+};
+
+// The light of unit u (one condenser direction k) through every objective path, added to the
+// pixel where each path lands, in XYZ relative to the axial transmission.
+void add_unit_light(const BenchInputs& in, std::size_t u, UnitScratch& scratch, std::vector<glm::dvec3>& img) {
+  const EvalUnit& unit = in.plan.units()[u];
+  if (in.pixel_of_unit[u] < 0) return;
+  CMat2 condenser;
+  if (!condenser_jones(in.optics, unit.k_air, condenser, scratch.bundle, scratch.fw[0])) return;
+  objective_paths(in.optics, unit.k_air, scratch.paths, scratch.bundle, scratch.fw);
+  const CVec2 e_s = condenser * in.polarizer;  // field at the sample, transverse basis of k
+  const bool crystal = in.plan.domains()[unit.domain].crystal && unit.thickness_um > 0;
+  const double scale = crystal ? unit.thickness_um / in.plan.domains()[unit.domain].thickness_um : 1.0;
+  ModalFit fit;
+  if (crystal) fit.fit(in.anchors[unit.domain].data(), unit.k_air);
+  const SpectralLevel& L = in.level;
+  for (const ObjectivePath& path : scratch.paths) {
+    const long px = path.main ? in.pixel_of_unit[u] : in.bfp.pixel(path.bfp_r_mm, path.bfp_azimuth);
+    if (px < 0) continue;
+    glm::dvec3 xyz(0.0);
+    for (int i = 0; i < L.n; ++i) {
+      double t = 0.0;
+      if (!crystal) {
+        const CVec2 e = path.jones * e_s;
+        for (int o = 0; o < in.outputs.count; ++o) t += std::norm(in.outputs.dir[o].x * e.x + in.outputs.dir[o].y * e.y);
+      } else {
+        t = crystal_band_intensity(fit.at(L.nm[i], scale), e_s, path.jones, L.nm[i], L.band_nm, in.outputs);
+      }
+      if (std::isfinite(t)) xyz += L.weight[i] * std::max(0.0, t);
+    }
+    img[static_cast<std::size_t>(px)] += xyz / in.axial;
+  }
+}
+
 }  // namespace
 
 StrategyResult render_physical_lens_model(const Scene& scene_in) {
   const auto t0 = std::chrono::steady_clock::now();
-  Scene scene = scene_in;
-  scene.render.strategy = RenderStrategy::Exact;  // geometry only: the modes are fitted here, per unit
-  if (scene.render.wavelengths <= 0) scene.render.wavelengths = 32;
+  const Scene scene = bench_scene(scene_in);
   const auto plan = compile_evaluation_plan(scene);
-  std::vector<std::array<PreparedPlate, 3>> anchors(plan->domains().size());
-  for (std::size_t d = 0; d < plan->domains().size(); ++d)
-    if (plan->domains()[d].crystal)
-      for (int a = 0; a < 3; ++a) anchors[d][a] = plan->prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  const std::vector<std::array<PreparedPlate, 3>> anchors = modal_anchors(*plan);
   const SpectralLevel L = make_spectral_level(*plan, scene.render.wavelengths);
   const int W = plan->width(), H = plan->height();
 
-  Optics O;
   const Lens objective(physical_lens_spec(+1));
   const Lens condenser(physical_lens_spec(-1));
-  O.objective = &objective.geometry();
-  O.condenser = &condenser.geometry();
-  O.media = objective.media(kLensNm);
-  O.opt.max_depth = scene.optics.lens_depth;
-  O.opt.fresnel = scene.optics.fresnel;
-  O.opt.tir = TirMode::Stop;
-  O.bfp_z_mm = O.objective->back_vertex().z + 2.0;
-
-  // Height-to-pixel relation of the depth-0 rays along azimuth 0: r(ρ), ρ = sinθ/NA.
-  const int kTable = 512;
-  std::vector<double> table_r(kTable + 1, -1.0);
-  {
-    LensBundle bundle;
-    std::vector<PolarizedRay> fw[2];
-    std::vector<ObjectivePath> paths;
-    for (int i = 0; i <= kTable; ++i) {
-      const double s = std::min(0.999999, scene.objective.na * i / kTable);
-      objective_paths(O, {s, 0.0, std::sqrt(1 - s * s)}, paths, bundle, fw);
-      for (const ObjectivePath& p : paths)
-        if (p.main) table_r[i] = p.bfp_r_mm;
-    }
-  }
-  const double half_px = 0.5 * std::min(W, H);
-  auto pixel_of_bfp = [&](double r_mm, double az) -> long {
-    int best = -1;
-    double bd = 1e300;
-    for (int i = 0; i <= kTable; ++i)
-      if (table_r[i] >= 0 && std::fabs(table_r[i] - r_mm) < bd) {
-        bd = std::fabs(table_r[i] - r_mm);
-        best = i;
-      }
-    if (best < 0) return -1;
-    const double rho = static_cast<double>(best) / kTable;
-    const double px = 0.5 * W + rho * std::cos(az) * half_px, py = 0.5 * H - rho * std::sin(az) * half_px;
-    const long x = static_cast<long>(std::floor(px)), y = static_cast<long>(std::floor(py));
-    if (x < 0 || y < 0 || x >= W || y >= H) return -1;
-    return y * W + x;
-  };
-
-  // Unit → pixel (one unit per lit pixel in the conoscopic view).
-  std::vector<long> pixel_of_unit(plan->units().size(), -1);
-  for (long i = 0; i < static_cast<long>(W) * H; ++i)
-    for (int r = plan->pixel_offset()[i]; r < plan->pixel_offset()[i + 1]; ++r) pixel_of_unit[plan->refs()[r].unit] = i;
-
-  // Exposure convention (issue 3): amplitudes relative to the axial ray's depth-0 path through
-  // both lenses, so that an empty stage between parallel polars gives Y = 1 on the axis.
-  double axial = 1.0;
-  {
-    LensBundle bundle;
-    std::vector<PolarizedRay> fw[2];
-    std::vector<ObjectivePath> paths;
-    CMat2 Jc;
-    const glm::dvec3 kz = kLightDirection;
-    if (condenser_jones(O, kz, Jc, bundle, fw[0])) {
-      objective_paths(O, kz, paths, bundle, fw);
-      for (const ObjectivePath& p : paths)
-        if (p.main) axial = std::norm((p.jones * (Jc * CVec2{1.0, 0.0})).x);
-    }
-    if (!(axial > 0.0)) axial = 1.0;
-  }
+  const Optics optics = make_optics(objective, condenser, scene);
+  const BfpHeightTable bfp = bfp_height_table(optics, scene.objective.na, W, H);
+  const std::vector<long> pixel_of_unit = pixel_of_units(*plan);
   const glm::dvec2 pol = polarizer_direction(scene.polarizer_deg);
-  const CVec2 p_in{pol.x, pol.y};
-  glm::dvec2 outputs[2];
-  int n_out = 1;
-  if (scene.analyzer_in) {
-    outputs[0] = polarizer_direction(scene.analyzer_deg);
-  } else {
-    n_out = 2;
-    outputs[0] = {1, 0};
-    outputs[1] = {0, 1};
-  }
+  const DetectedOutputs outputs = detected_outputs(scene);
+  const BenchInputs in{*plan, L, optics, anchors, bfp, pixel_of_unit, CVec2{pol.x, pol.y}, outputs, axial_intensity(optics)};
 
+  // One image per thread (ghosts land on other units' pixels), summed afterwards.
   tbb::enumerable_thread_specific<std::vector<glm::dvec3>> acc(
       [&] { return std::vector<glm::dvec3>(static_cast<std::size_t>(W) * H, glm::dvec3(0.0)); });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plan->units().size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
     auto& img = acc.local();
-    LensBundle bundle;
-    std::vector<PolarizedRay> fw[2];
-    std::vector<ObjectivePath> paths;
-    for (std::size_t u = range.begin(); u != range.end(); ++u) {
-      const EvalUnit& unit = plan->units()[u];
-      if (pixel_of_unit[u] < 0) continue;
-      CMat2 Jc;
-      if (!condenser_jones(O, unit.k_air, Jc, bundle, fw[0])) continue;
-      objective_paths(O, unit.k_air, paths, bundle, fw);
-      const CVec2 e_s = Jc * p_in;  // field at the sample, transverse basis of k
-      const bool crystal = plan->domains()[unit.domain].crystal && unit.thickness_um > 0;
-      const double scale = crystal ? unit.thickness_um / plan->domains()[unit.domain].thickness_um : 1.0;
-      ModalFit fit;
-      if (crystal) fit.fit(anchors[unit.domain].data(), unit.k_air);
-      for (const ObjectivePath& path : paths) {
-        const long px = path.main ? pixel_of_unit[u] : pixel_of_bfp(path.bfp_r_mm, path.bfp_azimuth);
-        if (px < 0) continue;
-        glm::dvec3 xyz(0.0);
-        for (int i = 0; i < L.n; ++i) {
-          double t = 0.0;
-          if (!crystal) {
-            const CVec2 e = path.jones * e_s;
-            for (int o = 0; o < n_out; ++o) t += std::norm(outputs[o].x * e.x + outputs[o].y * e.y);
-          } else {
-            const ModalPoint m = fit.at(L.nm[i], scale);
-            glm::dvec2 e1 = m.e1, e2 = m.e2;
-            double det = e1.x * e2.y - e1.y * e2.x;
-            if (std::fabs(det) < 1e-9) {
-              e2 = {-e1.y, e1.x};
-              det = 1.0;
-            }
-            const glm::dvec2 d1{e2.y / det, -e2.x / det}, d2{-e1.y / det, e1.x / det};
-            const cd a1 = m.t1 * (d1.x * e_s.x + d1.y * e_s.y), a2 = m.t2 * (d2.x * e_s.x + d2.y * e_s.y);
-            const CVec2 f1 = path.jones * CVec2{a1 * e1.x, a1 * e1.y};
-            const CVec2 f2 = path.jones * CVec2{a2 * e2.x, a2 * e2.y};
-            const double lambda = L.nm[i], two_pi = 2.0 * std::numbers::pi;
-            const double phi = two_pi * m.gamma_nm / lambda;
-            const double dphi = two_pi * (m.dgamma_dnm / lambda - m.gamma_nm / (lambda * lambda));
-            const double x = 0.5 * dphi * L.band_nm;
-            const double sinc = std::fabs(x) < 1e-8 ? 1.0 : std::sin(x) / x;
-            for (int o = 0; o < n_out; ++o) {
-              const cd c1 = outputs[o].x * f1.x + outputs[o].y * f1.y;
-              const cd c2 = outputs[o].x * f2.x + outputs[o].y * f2.y;
-              // fast mode phase −φ/2, slow +φ/2: |c1 e^{−iφ/2} + c2 e^{iφ/2}|², band-averaged.
-              t += std::norm(c1) + std::norm(c2) + 2.0 * std::real(c1 * std::conj(c2) * std::polar(1.0, -phi)) * sinc;
-            }
-          }
-          if (std::isfinite(t)) xyz += L.weight[i] * std::max(0.0, t);
-        }
-        img[static_cast<std::size_t>(px)] += xyz / axial;
-      }
-    }
+    UnitScratch scratch;
+    for (std::size_t u = range.begin(); u != range.end(); ++u) add_unit_light(in, u, scratch, img);
   });
   std::vector<glm::dvec3> sum(static_cast<std::size_t>(W) * H, glm::dvec3(0.0));
   for (const auto& img : acc)
