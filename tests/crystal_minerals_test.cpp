@@ -4,19 +4,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/base/input_error.h"
 
 using namespace pmsim;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = kPi / 180.0;
 }
 
 TEST(GhoshDispersion, QuartzIndicesAtSodiumD) {
@@ -87,7 +87,7 @@ TEST(OpticAngle, MatchesTheTangentForm) {
     EXPECT_NEAR(optic_angle_2v_rad(s[0], s[1], s[2]), 2 * std::atan(std::sqrt(t2)), 1e-12);
   }
   EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.5, 1.6), 0.0, 1e-12);                // uniaxial positive
-  EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.6, 1.6), std::numbers::pi, 1e-12);  // uniaxial negative
+  EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.6, 1.6), kPi, 1e-12);  // uniaxial negative
   EXPECT_EQ(optic_angle_2v_rad(1.5, 1.5, 1.5), 0.0);                          // isotropic, no NaN
 }
 
@@ -122,7 +122,7 @@ TEST(Orientation, HelpersGiveRightHandedOrthonormalFrames) {
   EXPECT_NEAR(glm::dot(u[2], glm::normalize(glm::dvec3(1, 2, 3))), 1.0, 1e-14);  // Z = optic axis
   EXPECT_NEAR(glm::dot(b[2], glm::normalize(glm::dvec3(0.1, 0.2, 1))), 1.0, 1e-14);  // z first
   // A stage turn of 90° counter-clockwise takes lab x to lab y.
-  const glm::dmat3 q = rotate_stage(glm::dmat3(1.0), std::numbers::pi / 2);
+  const glm::dmat3 q = rotate_stage(glm::dmat3(1.0), kPi / 2);
   EXPECT_NEAR(q[0].y, 1.0, 1e-15);
   EXPECT_THROW(uniaxial_orientation({0, 0, 0}), std::invalid_argument);
   EXPECT_THROW(biaxial_orientation({0, 0, 0}, {0, 0, 1}), std::invalid_argument);

@@ -1,17 +1,16 @@
 // Plate eigenmodes and Jones matrices checked against closed-form crystal optics.
 #include <cmath>
 #include <complex>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/crystal/plate.h"
 
 using namespace pmsim;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 glm::dvec3 dir_from_sin(double sin_theta, double azimuth_rad) {
   const double c = std::sqrt(1.0 - sin_theta * sin_theta);

@@ -1,16 +1,15 @@
 // Pleochroism: the colour of an absorbing crystal in plane-polarized light changes as the stage
 // turns because absorption depends on the vibration direction.
 #include <cmath>
-#include <numbers>
 
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/crystal/plate.h"
 
 using namespace pmsim;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 // Plane-polarized light (polarizer E–W, analyzer out): transmitted intensity at normal incidence.
 double ppl_intensity(const Crystal& c, const glm::dmat3& orient, double stage_rad, double wl, double d = 30.0) {

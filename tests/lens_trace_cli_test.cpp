@@ -76,16 +76,16 @@ TEST(PmsimTraceCli, OutputMatchesTheLibraryToTheLastBitAndBalancesEnergy) {
   double sum = 0;
   for (size_t i = 0; i < b.rays.size(); ++i) {
     const auto& jr = j["rays"][i];
-    const PolarizedRay& r = b.rays[i];
-    EXPECT_EQ(jr["intensity"].get<double>(), r.intensity);
-    EXPECT_EQ(jr["optical_path_mm"].get<double>(), r.optical_path_mm);
-    EXPECT_EQ(jr["delta_rad"].get<double>(), r.delta_rad);
+    const PolarizedRay& ray = b.rays[i];
+    EXPECT_EQ(jr["intensity"].get<double>(), ray.intensity);
+    EXPECT_EQ(jr["optical_path_mm"].get<double>(), ray.optical_path_mm);
+    EXPECT_EQ(jr["delta_rad"].get<double>(), ray.delta_rad);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_EQ(jr["origin"][c].get<double>(), r.origin[c]);
-      EXPECT_EQ(jr["dir"][c].get<double>(), r.dir[c]);
-      EXPECT_EQ(jr["pol"][c].get<double>(), r.pol[c]);
+      EXPECT_EQ(jr["origin"][c].get<double>(), ray.origin[c]);
+      EXPECT_EQ(jr["dir"][c].get<double>(), ray.dir[c]);
+      EXPECT_EQ(jr["pol"][c].get<double>(), ray.pol[c]);
     }
-    EXPECT_EQ(jr["depth"].get<int>(), r.depth);
+    EXPECT_EQ(jr["depth"].get<int>(), ray.depth);
     EXPECT_EQ(jr["source"].get<int>(), 7);
     EXPECT_EQ(jr["wavelength_nm"].get<double>(), 546.1);
     EXPECT_GE(jr["optical_path_mm"].get<double>(), 3.0);  // input O_p + n·S

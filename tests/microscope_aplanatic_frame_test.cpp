@@ -2,11 +2,11 @@
 // checked against their closed-form focal field for x-polarized input, and for the properties the
 // conoscopic figure relies on.
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/crystal/plate.h"
 #include "core/microscope/lens_polarization.h"
 
@@ -28,7 +28,7 @@ TEST(AplanaticFrame, XPolarizedPupilFieldMatchesRichardsWolf) {
   // azimuth φ leaves along θ with field ∝ (cosθ cos²φ + sin²φ, (cosθ − 1) cosφ sinφ, −sinθ cosφ),
   // a unit vector. Tolerance 1e-12: both sides are a few products of sines and cosines.
   for (double theta : {0.1, 0.6, 1.0, 1.4})
-    for (double phi : {0.0, 0.3, std::numbers::pi / 4, 2.0, 4.0}) {
+    for (double phi : {0.0, 0.3, kPi / 4, 2.0, 4.0}) {
       const glm::dvec3 k = direction(theta, phi);
       const glm::dvec3 got = image_in_3d(aplanatic_frame(k), k, 0);
       const double c = std::cos(phi), s = std::sin(phi), ct = std::cos(theta);
@@ -50,7 +50,7 @@ TEST(AplanaticFrame, IsARotationThatIsIdentityOnTheAxisAndOnThePolarPlanes) {
     }
   // In the planes of the polarizer and analyzer (φ = 0°, 90°) the radial and azimuthal directions
   // are x and y themselves, so the isogyres stay on the cross hairs: F = I there (1e-12).
-  for (double phi : {0.0, std::numbers::pi / 2, std::numbers::pi})
+  for (double phi : {0.0, kPi / 2, kPi})
     for (double theta : {0.0, 0.8}) {
       const glm::dmat2 F = aplanatic_frame(direction(theta, phi));
       EXPECT_NEAR(std::fabs(F[0][0]), 1.0, 1e-12) << phi;
@@ -62,10 +62,10 @@ TEST(AplanaticFrame, DiffersFromProjectingTheLabAxisAtHighAperture) {
   // The projection of x̂ onto the plane ⟂ k turns the field about twice as far as the lens does
   // (second order in θ: −θ²·cs versus −θ²/2·cs); at NA 0.85 on the diagonal the two differ by
   // several degrees, which is what made the conoscopic figure 4.6 CIEDE2000 off. Require > 3°.
-  const glm::dvec3 k = direction(std::asin(0.85), std::numbers::pi / 4);
+  const glm::dvec3 k = direction(std::asin(0.85), kPi / 4);
   glm::dvec3 a, b;
   transverse_basis(k, a, b);  // a is the projected x̂
   const glm::dvec3 lens_x = image_in_3d(aplanatic_frame(k), k, 0);
-  const double angle_deg = std::acos(std::min(1.0, glm::dot(lens_x, a))) * 180.0 / std::numbers::pi;
+  const double angle_deg = degrees(std::acos(std::min(1.0, glm::dot(lens_x, a))));
   EXPECT_GT(angle_deg, 3.0);
 }

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/base/input_error.h"
 #include "core/microscope/figure_info.h"
@@ -26,7 +26,7 @@ TEST(PixelProbe, PlateAt45ShowsItsRetardationAndSinSquaredSpectrum) {
   EXPECT_NEAR(p.retardation_nm, 550.0, 1e-6);
   EXPECT_NEAR(p.order, 1.0, 1e-8);
   for (std::size_t i = 0; i < p.wavelength_nm.size(); ++i) {
-    const double want = std::pow(std::sin(std::numbers::pi * 550.0 / p.wavelength_nm[i]), 2);
+    const double want = std::pow(std::sin(kPi * 550.0 / p.wavelength_nm[i]), 2);
     // Fresnel loss at the faces (n 1.54–1.55 against the mounting medium) < 1e-4.
     EXPECT_NEAR(p.transmission[i], want, 1e-3) << p.wavelength_nm[i];
   }
@@ -86,7 +86,7 @@ TEST(FigureInfo, BiaxialTwoVFromTheIndices) {
   EXPECT_EQ(f.optic_sign, "positive");  // nγ − nβ > nβ − nα: Z is the acute bisectrix
   // cos²Vz = nα²(nγ² − nβ²)/(nβ²(nγ² − nα²)) → 2Vz ≈ 61.0°
   const double c2 = 1.60 * 1.60 * (1.64 * 1.64 - 1.61 * 1.61) / (1.61 * 1.61 * (1.64 * 1.64 - 1.60 * 1.60));
-  EXPECT_NEAR(f.two_v_deg, 2.0 * std::acos(std::sqrt(c2)) * 180.0 / std::numbers::pi, 1e-6);
+  EXPECT_NEAR(f.two_v_deg, 2.0 * std::acos(std::sqrt(c2)) * 180.0 / kPi, 1e-6);
   EXPECT_EQ(f.orientation, "acute bisectrix figure");
 }
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <vector>
 
+#include "core/base/units.h"
 #include "core/render/progressive_renderer.h"
 #include "tests/asset_scene.h"
 
@@ -109,7 +109,7 @@ TEST(ConoscopicUniaxial, IsogyresFollowThePolarsNotTheStage) {
   s.sample.thickness_um = 100.0;
   const int c = 64, r = 40;  // sample points at radius 40 px
   auto at_angle = [&](const RenderImage& img, double deg) {
-    const double a = deg * std::numbers::pi / 180.0;
+    const double a = radians(deg);
     return Y(img, c + static_cast<int>(std::lround(r * std::cos(a))), c - 1 - static_cast<int>(std::lround(r * std::sin(a))));
   };
   for (double stage : {0.0, 30.0}) {

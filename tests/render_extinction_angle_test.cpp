@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <vector>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/lattice.h"
 #include "core/crystal/mineral_crystallography.h"
@@ -18,7 +18,7 @@ using namespace pmsim;
 
 namespace {
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr double kDeg = 180.0 / kPi;
 constexpr double kWavelength_nm = 550.0;
 
 struct Cut {

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
+#include "core/base/units.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/render/progressive_renderer.h"
 #include "core/spectrum/cie.h"
@@ -20,7 +20,7 @@ glm::dvec3 reference_xyz(double gamma_nm, bool parallel) {
   glm::dvec3 xyz(0.0);
   const double step = 0.05;
   for (double l = 380.0 + 0.5 * step; l < 780.0; l += step) {
-    const double s = std::sin(std::numbers::pi * gamma_nm / l);
+    const double s = std::sin(kPi * gamma_nm / l);
     xyz += observer_weight(Illuminant::D65, l) * (parallel ? 1.0 - s * s : s * s) * step;
   }
   return xyz;

@@ -3,11 +3,11 @@
 // grazing directions. The Jones matrix must be finite, passive (|J·e|² ≤ 1 without gain), and
 // continuous across the special point; retardations must scale exactly with thickness.
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/plate.h"
 
@@ -24,7 +24,7 @@ bool finite(const JonesMatrix& J) {
 double max_gain(const JonesMatrix& J) {
   double g = 0.0;
   for (int i = 0; i < 16; ++i) {
-    const double a = std::numbers::pi * i / 16;
+    const double a = kPi * i / 16;
     for (complexd ph : {complexd(1, 0), complexd(0, 1)}) {
       const JonesVector e{std::cos(a), std::sin(a) * ph};
       g = std::max(g, (J * e).intensity());
@@ -46,7 +46,7 @@ TEST(StabilityCrystal, UniaxialRayAlongAndOneNanoradianOffTheOpticAxisIsContinuo
   for (bool fresnel : {false, true}) {
     PlateSpec spec{&calcite, uniaxial_orientation({0, 0, 1}), 1000.0, 1.54, fresnel};
     for (double theta : {0.0, 1e-12, 1e-9, 1e-6})
-      for (double az : {0.0, 0.7, std::numbers::pi / 4}) {
+      for (double az : {0.0, 0.7, kPi / 4}) {
         const glm::dvec3 k = tilted(theta, az);
         const PlateModes m = plate_modes(spec, k, 550.0);
         const JonesMatrix J = plate_jones(spec, k, 550.0);
@@ -58,7 +58,7 @@ TEST(StabilityCrystal, UniaxialRayAlongAndOneNanoradianOffTheOpticAxisIsContinuo
         // ≤ 2e5·θ² nm (θ = 1e-6 → 2e-7 nm), i.e. continuous at the axis.
         EXPECT_LE(m.retardation_nm, 2e5 * theta * theta + 1e-9) << theta;
         // Crossed polars: black at and next to the axis (the melatope), |J_yx|² ≤ (πΓ/λ)² + 1e-20.
-        const double bound = std::pow(std::numbers::pi * (2e5 * theta * theta + 1e-9) / 550.0, 2);
+        const double bound = std::pow(kPi * (2e5 * theta * theta + 1e-9) / 550.0, 2);
         EXPECT_LE(crossed(J), bound + 1e-20) << theta;
       }
   }
@@ -72,7 +72,7 @@ TEST(StabilityCrystal, BiaxialRayAlongAndOneNanoradianOffABinormalIsFiniteAndCon
   // 1/nγ²) (Born & Wolf §15.3.3); the wave normal along a binormal has index nβ, so in air
   // sinθ = nβ·sinV_x (the tangential wave vector is conserved; the plate's k_air is in air).
   const double tv2 = (1 / (na * na) - 1 / (nb * nb)) / (1 / (nb * nb) - 1 / (ng * ng));
-  const double Vx = std::numbers::pi / 2 - std::atan(std::sqrt(tv2));
+  const double Vx = kPi / 2 - std::atan(std::sqrt(tv2));
   const double theta_air = std::asin(nb * std::sin(Vx));
   ASSERT_TRUE(std::isfinite(theta_air));
   PlateSpec spec{&mica, biaxial_orientation({0, 0, 1}, {1, 0, 0}), 100.0, 1.0, false};
@@ -135,7 +135,7 @@ TEST(StabilityCrystal, TenMillionNanometreRetardationKeepsItsPhase) {
     ASSERT_TRUE(finite(J));
     // Optic axis at 45° between crossed polars: T = sin²(πΓ/λ) (Michel-Lévy). The phase is
     // ~1e5 rad; double carries it to ~1e5·1e-16 rad, so T agrees to 1e-9.
-    EXPECT_NEAR(crossed(J), std::pow(std::sin(std::numbers::pi * m.retardation_nm / nm), 2), 1e-9) << nm;
+    EXPECT_NEAR(crossed(J), std::pow(std::sin(kPi * m.retardation_nm / nm), 2), 1e-9) << nm;
   }
   // Γ scales with thickness without cancellation (the k_z difference is formed directly).
   PlateSpec half = spec;

@@ -7,12 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <random>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
@@ -120,7 +120,7 @@ TEST(StabilityFuzz, FourHundredThousandRandomPlaneWavesThroughPlatesStayFiniteAn
     spec.n_outside = 1.0 + 0.8 * u(rng);
     spec.fresnel = u(rng) < 0.7;
     const double cz = (i % 7 == 0) ? std::pow(10.0, -9.0 * u(rng)) : u(rng) + 1e-12;
-    const double sz = std::sqrt((1 - cz) * (1 + cz)), az = 2 * std::numbers::pi * u(rng);
+    const double sz = std::sqrt((1 - cz) * (1 + cz)), az = 2 * kPi * u(rng);
     const glm::dvec3 k{sz * std::cos(az), sz * std::sin(az), cz};
     const double nm = 380.0 + 400.0 * u(rng);
     const JonesMatrix J = plate_jones(spec, k, nm);
@@ -168,7 +168,7 @@ TEST(StabilityFuzz, PlateWithoutFresnelFacesIsPassiveAtObliqueIncidence) {
   std::string where;
   for (int i = 0; i < 12; ++i)
     for (int j = 0; j < 12; ++j) {
-      const double ta = std::numbers::pi * i / 12, pa = 2 * std::numbers::pi * j / 12;
+      const double ta = kPi * i / 12, pa = 2 * kPi * j / 12;
       PlateSpec spec;
       spec.crystal = &calcite;
       spec.crystal_to_lab = uniaxial_orientation({std::sin(ta) * std::cos(pa), std::sin(ta) * std::sin(pa), std::cos(ta)});
@@ -178,7 +178,7 @@ TEST(StabilityFuzz, PlateWithoutFresnelFacesIsPassiveAtObliqueIncidence) {
         for (double az : {0.0, 1.0, 2.0}) {
           const glm::dvec3 k{std::sin(theta) * std::cos(az), std::sin(theta) * std::sin(az), std::cos(theta)};
           const JonesMatrix J = plate_jones(spec, k, 550.0);
-          for (double a = 0; a < std::numbers::pi; a += std::numbers::pi / 16)
+          for (double a = 0; a < kPi; a += kPi / 16)
             for (complexd ph : {complexd(1, 0), complexd(0, 1)}) {
               const double g = (J * JonesVector{std::cos(a), std::sin(a) * ph}).intensity();
               if (g > worst) {

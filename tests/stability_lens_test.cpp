@@ -3,13 +3,13 @@
 // bounded), and optical paths of 200 mm — where float would lose the interference phase and
 // double (or carried differences) keeps it.
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <type_traits>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/base/units.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
 
@@ -129,7 +129,7 @@ TEST(StabilityLens, SplitTirCascadesAtLargeDepthStayBoundedInRaysAndEnergy) {
     std::size_t worst = 0;
     int limited = 0;
     for (int i = 0; i < 200; ++i) {
-      const double r = 5.0 * (0.7 + 0.3 * u(rng)), a = 2 * std::numbers::pi * u(rng);
+      const double r = 5.0 * (0.7 + 0.3 * u(rng)), a = 2 * kPi * u(rng);
       const glm::dvec3 target = g.front_vertex() + glm::dvec3(r * std::cos(a), r * std::sin(a), 5.0 - std::sqrt(25.0 - r * r));
       const glm::dvec3 from = target + glm::dvec3(-std::cos(a), -std::sin(a), -0.3) * 4.0;
       LensBundle b;
@@ -162,7 +162,7 @@ TEST(StabilityLens, TwoHundredMillimetrePathsNeedDoubleOrDifferences) {
   }
   pf2 = pf1 + static_cast<float>(gamma_nm * 1e-6);
   pd2 = pd1 + gamma_nm * 1e-6;
-  const double two_pi = 2.0 * std::numbers::pi;
+  const double two_pi = 2.0 * kPi;
   const double cos_float = std::cos(two_pi * (static_cast<double>(pf2) - static_cast<double>(pf1)) * 1e6 / lambda_nm);
   const double cos_double = std::cos(two_pi * (pd2 - pd1) * 1e6 / lambda_nm);
   // float at 303 mm has an ulp of 3e-5 mm = 30 nm: the 137.5 nm difference is quantised to a

@@ -134,7 +134,7 @@ TEST(UiScript, ExportsAndScreenshotsCarryTheSceneAndSaveLoadRoundTrips) {
   EXPECT_DOUBLE_EQ(d->app().scene().stage_deg, 33.0);
   // A folder that cannot exist (under a device file): banner, no crash, nothing written.
   EXPECT_TRUE(run(*d, "export /dev/null/x.png\nexpect-error\n").ok);
-  for (const auto& f : {field, exr, window, scene}) std::filesystem::remove(f);
+  for (const auto& path : {field, exr, window, scene}) std::filesystem::remove(path);
 }
 
 }  // namespace

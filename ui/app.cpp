@@ -11,7 +11,7 @@
 
 #include "core/io/image_file.h"
 #include "core/base/input_error.h"
-#include "core/base/units.h"  // kPi
+#include "core/base/units.h"  // kPi, radians, degrees
 #include "core/io/scene_file.h"
 #include "core/microscope/scene_check.h"
 #include "ui/asset_lists.h"
@@ -276,7 +276,7 @@ void App::draw_field(Scene& edit, bool& changed) {
   ImGui::SetCursorScreenPos(p0);
   ImGui::InvisibleButton("field_stage", ImVec2(l.field.w, l.field.h));
   const ImVec2 m = ImGui::GetIO().MousePos;
-  const double mouse_angle_deg = std::atan2(-(m.y - c.y), m.x - c.x) * 180.0 / kPi;
+  const double mouse_angle_deg = degrees(std::atan2(-(m.y - c.y), m.x - c.x));
   if (ImGui::IsItemActivated()) {
     dragging_ = true;
     drag_angle_deg_ = mouse_angle_deg;

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/base/input_error.h"
-#include "core/base/units.h"  // kPi
+#include "core/base/units.h"  // kPi, radians, degrees
 #include "ui/shortcuts.h"
 
 namespace pmsim::ui {
@@ -156,7 +156,7 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
       } else {
         // An arc at 0.7 of the field radius, starting east; screen y grows downwards.
         const Rect& f = app.layout().field;
-        const double r = 0.35 * f.w, sweep = num(0) * kPi / 180;
+        const double r = 0.35 * f.w, sweep = radians(num(0));
         const int n = a.size() > 1 ? std::max(1, static_cast<int>(num(1))) : 12;
         for (int k = 0; k <= n; ++k) {
           const double angle = sweep * k / n;

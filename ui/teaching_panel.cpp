@@ -80,13 +80,13 @@ void App::draw_chart() {
                   p.order, off);
   std::snprintf(labels[1], sizeof labels[1], "%.0f nm, order %.2f", p.retardation_nm, p.order);
   const char* title = "";
-  const char* label = probed ? labels[1] : "";
+  const char* probe_label = probed ? labels[1] : "";
   for (const char* l_try : {labels[0], labels[1]}) {
     const float lw = probed ? ImGui::CalcTextSize(l_try).x + 12 : 0;
     for (const char* t_try : {titles[0], titles[1]})
       if (!*title && ImGui::CalcTextSize(t_try).x + lw <= l.chart.w) {
         title = t_try;
-        if (probed) label = l_try;
+        if (probed) probe_label = l_try;
       }
     if (*title) break;
   }
@@ -150,9 +150,9 @@ void App::draw_chart() {
         draw->AddCircle(ImVec2(x, y), 4, shadow, 12, 1.5f);
       }
     }
-    const float w = ImGui::CalcTextSize(label).x;
+    const float w = ImGui::CalcTextSize(probe_label).x;
     draw->AddText(ImVec2(l.chart.x + l.chart.w - w, l.chart.y), IM_COL32(255, 255, 255, 255),
-                  label);
+                  probe_label);
   }
   ImGui::End();
   ImGui::PopStyleVar();

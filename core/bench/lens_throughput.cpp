@@ -2,12 +2,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
+#include "core/base/units.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_embree.h"
 #include "core/lens/lens_tracer.h"
@@ -67,7 +67,7 @@ RTCGeometry sphere_mesh(RTCDevice dev, double R, int rings, int segments) {
                                                         3 * sizeof(float), nv));
   for (int i = 0; i <= rings; ++i)
     for (int j = 0; j < segments; ++j) {
-      const double th = std::numbers::pi * i / rings, ph = 2 * std::numbers::pi * j / segments;
+      const double th = kPi * i / rings, ph = 2 * kPi * j / segments;
       float* p = v + 3 * (i * segments + j);
       p[0] = float(R * std::sin(th) * std::cos(ph));
       p[1] = float(R * std::sin(th) * std::sin(ph));
@@ -95,7 +95,7 @@ RTCGeometry lens_mesh(RTCDevice dev, const LensGeometry& L, int rings, int segme
     const unsigned base = static_cast<unsigned>(v.size() / 3);
     for (int i = 0; i <= rings; ++i)
       for (int j = 0; j < segments; ++j) {
-        const double r = rho * i / rings, ph = 2 * std::numbers::pi * j / segments;
+        const double r = rho * i / rings, ph = 2 * kPi * j / segments;
         v.insert(v.end(), {float(r * std::cos(ph)), float(r * std::sin(ph)), float(z_vertex + cap_sag_mm(R, r))});
       }
     for (int i = 0; i < rings; ++i)
@@ -197,14 +197,14 @@ std::vector<ThroughputResult> measure_lens_throughput(int n) {
     std::vector<PolarizedRay> in(m);
     const double rho = G.aperture_radius_mm();
     for (PolarizedRay& r : in) {
-      const double a = 2 * std::numbers::pi * u(rng), s = rho * std::sqrt(u(rng));
-      const double b = 2 * std::numbers::pi * u(rng), q = 0.95 * rho * std::sqrt(u(rng));
+      const double a = 2 * kPi * u(rng), s = rho * std::sqrt(u(rng));
+      const double b = 2 * kPi * u(rng), q = 0.95 * rho * std::sqrt(u(rng));
       r.origin = G.front_vertex() + glm::dvec3(s * std::cos(a), s * std::sin(a), -10.0);
       const glm::dvec3 target = G.front_vertex() + glm::dvec3(q * std::cos(b), q * std::sin(b), 0.0);
       r.dir = glm::normalize(target - r.origin);
       glm::dvec3 ta = glm::normalize(glm::cross(r.dir, glm::dvec3(0.3, 0.5, 0.8)));
       const glm::dvec3 tb = glm::cross(r.dir, ta);
-      const double phi = 2 * std::numbers::pi * u(rng);
+      const double phi = 2 * kPi * u(rng);
       r.pol = std::cos(phi) * ta + std::sin(phi) * tb;
       r.wavelength_nm = 380.0 + 400.0 * u(rng);
     }

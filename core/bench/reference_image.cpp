@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <algorithm>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/base/units.h"
 #include "core/bench/physical_lens_model.h"
 #include "core/io/atomic_file.h"
 #include "core/io/scene_file.h"
@@ -99,7 +99,7 @@ struct UnitXyz {
 void evaluate_direction(const EvaluationPlan& plan, const SpectralLevel& L, const EvalUnit& unit,
                         const glm::dvec3& k, std::vector<PlateModes>& modes, UnitXyz& acc) {
   const int N = L.n;
-  const double two_pi = 2.0 * std::numbers::pi;
+  const double two_pi = 2.0 * kPi;
   const OpticalDomain& dom = plan.domains()[unit.domain];
   if (!dom.crystal || unit.thickness_um <= 0.0) {
     for (int b = 0; b < N; ++b) {

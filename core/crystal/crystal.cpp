@@ -31,14 +31,14 @@ double IndexDispersion::n(double wavelength_nm) const {
   return A;
 }
 
-double AbsorptionTable::mu(double wavelength_nm) const {
+double AbsorptionTable::mu(double lambda_nm) const {
   if (empty()) return 0.0;
   const auto& w = this->wavelength_nm;
-  if (wavelength_nm <= w.front()) return mu_per_um.front();
-  if (wavelength_nm >= w.back()) return mu_per_um.back();
-  const auto it = std::upper_bound(w.begin(), w.end(), wavelength_nm);
+  if (lambda_nm <= w.front()) return mu_per_um.front();
+  if (lambda_nm >= w.back()) return mu_per_um.back();
+  const auto it = std::upper_bound(w.begin(), w.end(), lambda_nm);
   const size_t i = static_cast<size_t>(it - w.begin());
-  const double f = (wavelength_nm - w[i - 1]) / (w[i] - w[i - 1]);
+  const double f = (lambda_nm - w[i - 1]) / (w[i] - w[i - 1]);
   return mu_per_um[i - 1] + f * (mu_per_um[i] - mu_per_um[i - 1]);
 }
 

@@ -37,7 +37,7 @@ struct IndexDispersion {
 struct AbsorptionTable {
   std::vector<double> wavelength_nm;
   std::vector<double> mu_per_um;
-  double mu(double wavelength_nm) const;
+  double mu(double lambda_nm) const;
   bool empty() const { return wavelength_nm.empty(); }
 };
 

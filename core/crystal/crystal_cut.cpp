@@ -1,19 +1,19 @@
 #include "core/crystal/crystal_cut.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include "core/base/json_reader.h"
+#include "core/base/units.h"
 
 namespace pmsim {
 
 double direction_plane_angle_deg(const UnitCell& cell, MillerIndices plane, LatticeDirection north) {
   const glm::dvec3 n = plane_normal(cell, plane), d = lattice_direction(cell, north);
   // atan2 of sine and cosine: accurate near 0° and 90° alike (asin loses half the digits at 90°).
-  return std::atan2(std::abs(glm::dot(n, d)), glm::length(glm::cross(n, d))) * 180.0 / std::numbers::pi;
+  return degrees(std::atan2(std::abs(glm::dot(n, d)), glm::length(glm::cross(n, d))));
 }
 
 glm::dmat3 crystal_to_lab_of_cut(const UnitCell& cell, MillerIndices plane, LatticeDirection north) {

@@ -2,12 +2,12 @@
 
 #include <cctype>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "core/base/json_reader.h"
+#include "core/base/units.h"
 
 namespace pmsim {
 
@@ -20,12 +20,12 @@ double cos_deg(double d) {
   if (d == 90.0) return 0.0;
   if (d == 120.0) return -0.5;
   if (d == 60.0) return 0.5;
-  return std::cos(d * std::numbers::pi / 180.0);
+  return std::cos(radians(d));
 }
 double sin_deg(double d) {
   if (d == 90.0) return 1.0;
   if (d == 120.0 || d == 60.0) return std::sqrt(3.0) / 2.0;
-  return std::sin(d * std::numbers::pi / 180.0);
+  return std::sin(radians(d));
 }
 
 bool same(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)); }

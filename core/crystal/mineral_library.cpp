@@ -19,10 +19,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <numbers>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/base/json_reader.h"
@@ -213,7 +213,7 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
     else if (hand == "left") sign = -1.0;
     else r.fail("rotatory_power.handedness", hand, "expected right or left");
     RotatoryDispersion rd;
-    rd.A_rad_um = sign * a_deg * (std::numbers::pi / 180.0) * 1e-3;  // °·µm²/mm → rad·µm²/µm
+    rd.A_rad_um = sign * a_deg * (kPi / 180.0) * 1e-3;  // °·µm²/mm → rad·µm²/µm
     rd.lambda0_um = l0;
     c.set_rotatory_power(rd);
   }

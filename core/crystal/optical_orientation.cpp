@@ -1,11 +1,11 @@
 #include "core/crystal/optical_orientation.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
 #include "core/base/json_reader.h"
+#include "core/base/units.h"
 
 namespace pmsim {
 
@@ -59,7 +59,7 @@ glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const Opt
       // (β > 90° in the standard setting); the acute side is the other way. Likewise from +a.
       const glm::dvec3 ref = o.from_a ? a : c, other = o.from_a ? c : a;
       const glm::dvec3 toward = glm::normalize(other - glm::dot(other, ref) * ref);  // ⟂ ref, +other side
-      const double t = o.angle_deg * std::numbers::pi / 180.0;
+      const double t = radians(o.angle_deg);
       const double s = o.side == MonoclinicSide::ObtuseBeta ? 1.0 : -1.0;
       const glm::dvec3 inclined = std::cos(t) * ref + s * std::sin(t) * toward;
       glm::dvec3 v[3];

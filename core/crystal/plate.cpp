@@ -34,10 +34,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+
+#include "core/base/units.h"
 
 namespace pmsim {
 
@@ -69,7 +70,7 @@ PreparedPlate prepare_plate(const PlateSpec& plate, double wavelength_nm) {
   }
   p.optic_axis = R[2];
   p.n_principal = n;
-  p.k0_per_um = 2.0 * std::numbers::pi / (wavelength_nm * 1e-3);
+  p.k0_per_um = 2.0 * kPi / (wavelength_nm * 1e-3);
   p.thickness_um = plate.thickness_um;
   p.n_outside = plate.n_outside;
   p.rho_rad_per_um = c.rotatory_power_rad_per_um(wavelength_nm);

@@ -1,16 +1,17 @@
 #include "core/crystal/section_optics.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/base/units.h"
+
 namespace pmsim {
 
 namespace {
-constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr double kDeg = 180.0 / kPi;
 }
 
 SectionOptics section_optics(const glm::dmat3& axes, const glm::dvec3& n_xyz, const glm::dvec3& normal) {

@@ -2,18 +2,17 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
+#include "core/base/units.h"
 #include "core/microscope/evaluation_plan.h"
 
 namespace pmsim {
 
 namespace {
-double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
 // Angle between an axis (either sense) and the microscope axis z.
-double tilt_deg(const glm::dvec3& v) { return deg(std::acos(std::min(1.0, std::fabs(glm::normalize(v).z)))); }
+double tilt_deg(const glm::dvec3& v) { return degrees(std::acos(std::min(1.0, std::fabs(glm::normalize(v).z)))); }
 std::string fmt(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
@@ -55,7 +54,7 @@ FigureInfo describe_figure(const Scene& scene_in) {
       const bool positive = n.z > n.x;
       f.optic_sign = positive ? "positive" : "negative";
       f.axis_tilt_deg = tilt_deg(R[2]);
-      const double sin_e = n.x * std::sin(f.axis_tilt_deg * std::numbers::pi / 180.0);
+      const double sin_e = n.x * std::sin(radians(f.axis_tilt_deg));
       f.orientation = f.axis_tilt_deg < 5     ? "centred optic-axis figure"
                       : sin_e < scene.objective.na ? "off-centre optic-axis figure (melatope in the field)"
                       : f.axis_tilt_deg > 75 ? "flash figure (optic axis near the stage plane)"
@@ -69,12 +68,12 @@ FigureInfo describe_figure(const Scene& scene_in) {
     case CrystalSymmetry::Biaxial: {
       f.kind = "biaxial";
       const double two_vz = optic_angle_2v_rad(n.x, n.y, n.z);
-      const bool positive = two_vz < std::numbers::pi / 2;
+      const bool positive = two_vz < kPi / 2;
       f.optic_sign = positive ? "positive" : "negative";
-      f.two_v_deg = deg(positive ? two_vz : std::numbers::pi - two_vz);
+      f.two_v_deg = degrees(positive ? two_vz : kPi - two_vz);
       const glm::dvec3 bxa = positive ? R[2] : R[0], bxo = positive ? R[0] : R[2];
       f.axis_tilt_deg = tilt_deg(bxa);
-      const double v = 0.5 * (positive ? two_vz : std::numbers::pi - two_vz);
+      const double v = 0.5 * (positive ? two_vz : kPi - two_vz);
       const double a1 = tilt_deg(std::cos(v) * bxa + std::sin(v) * bxo);
       const double a2 = tilt_deg(std::cos(v) * bxa - std::sin(v) * bxo);
       if (f.axis_tilt_deg < 10)
@@ -89,7 +88,7 @@ FigureInfo describe_figure(const Scene& scene_in) {
         f.orientation = "off-centre figure";
       // Around the acute bisectrix the slow vibration is Y (⟂ the optic-axial plane) for a
       // positive crystal and Z (in the plane) for a negative one.
-      const double oap_deg = deg(std::atan2(bxo.y, bxo.x));
+      const double oap_deg = degrees(std::atan2(bxo.y, bxo.x));
       double turn = std::fmod(45.0 - oap_deg, 180.0);
       if (turn < 0) turn += 180.0;
       f.compensator = "with the optic-axial plane NE–SW (turn the stage by " + fmt("%.0f", turn) +

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include <tbb/parallel_for.h>
 
+#include "core/base/units.h"
 #include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 #include "core/microscope/radial_modal_table.h"
@@ -78,7 +78,7 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
                             // ~1e-3 (rotation < linear phase / 30) or go exact.
                             const double rot = std::fabs(dom.crystal->rotatory_power_rad_per_um(400.0)) *
                                                unit.thickness_um;
-                            const double lin = 2.0 * std::numbers::pi * fit.retardation_nm(400.0) *
+                            const double lin = 2.0 * kPi * fit.retardation_nm(400.0) *
                                                unit.thickness_um / dom.thickness_um / 400.0;
                             if (lin < 30.0 * rot) out.unit_exact[u] = 1;
                           }

@@ -1,8 +1,8 @@
 #include "core/microscope/optical_domains.h"
 
 #include <array>
-#include <numbers>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal_cut.h"
 
 namespace pmsim {
@@ -21,7 +21,7 @@ glm::dmat3 sample_orientation(const Crystal& c, const SampleSettings& s) {
 
 OpticalDomains optical_domains(const Scene& scene) {
   OpticalDomains out;
-  const double stage_rad = scene.stage_deg * std::numbers::pi / 180.0;
+  const double stage_rad = radians(scene.stage_deg);
   if (!scene.sample_in) {
     out.domains.push_back({nullptr, glm::dmat3(1.0), scene.sample.thickness_um, "empty stage"});
   } else if (scene.sample.type == SampleType::Section) {

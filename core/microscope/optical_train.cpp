@@ -1,11 +1,11 @@
 #include "core/microscope/optical_train.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
 #include "core/base/conventions.h"
+#include "core/base/units.h"
 
 namespace pmsim {
 
@@ -29,7 +29,7 @@ TrainState make_train(const Scene& scene, const CompensatorPlate& comp, double w
     const double h = 0.5;
     const double gp = compensator_retardation_nm(comp, wavelength_nm + h);
     const double gm = compensator_retardation_nm(comp, wavelength_nm - h);
-    const double two_pi = 2.0 * std::numbers::pi;
+    const double two_pi = 2.0 * kPi;
     t.chi_rad = two_pi * g / wavelength_nm;
     // d(2πΓ/λ)/dλ = 2π(Γ'/λ − Γ/λ²)
     t.dchi_dnm = two_pi * ((gp - gm) / (2 * h) / wavelength_nm - g / (wavelength_nm * wavelength_nm));
@@ -66,7 +66,7 @@ double modal_transmission(const TrainState& t, const ModalPoint& m, double band_
   const glm::dvec2 d1{e2.y / det, -e2.x / det}, d2{-e1.y / det, e1.x / det};
   const double a1 = m.t1 * glm::dot(d1, t.polarizer), a2 = m.t2 * glm::dot(d2, t.polarizer);
   const double lambda = t.wavelength_nm;
-  const double two_pi = 2.0 * std::numbers::pi;
+  const double two_pi = 2.0 * kPi;
   const double phi = two_pi * m.gamma_nm / lambda;
   const double dphi = two_pi * (m.dgamma_dnm / lambda - m.gamma_nm / (lambda * lambda));
   // Terms (mode m, compensator mode k) with phase (s_m·φ + s_k·χ)/2, s = −1 fast, +1 slow.

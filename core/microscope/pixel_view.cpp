@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <tbb/parallel_for.h>
 
+#include "core/base/units.h"
 #include "core/microscope/view_geometry.h"
 
 namespace pmsim {
@@ -83,7 +83,7 @@ class FieldUnits {
 
 std::vector<glm::dvec3> cone_directions(int n, double s_max) {
   std::vector<glm::dvec3> d;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < n; ++i) {
     const double r = s_max * std::sqrt((i + 0.5) / n), a = i * golden;
     d.push_back({r * std::cos(a), r * std::sin(a), std::sqrt(std::max(0.0, 1.0 - r * r))});

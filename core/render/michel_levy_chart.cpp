@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
-#include <numbers>
 
+#include "core/base/units.h"
 #include "core/render/band_integral.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
@@ -42,7 +42,7 @@ const Bands& bands(Illuminant il) {
 glm::dvec3 michel_levy_xyz(double gamma_nm, Illuminant il, bool parallel) {
   const Bands& B = bands(il);
   glm::dvec3 xyz(0.0);
-  const double two_pi = 2.0 * std::numbers::pi;
+  const double two_pi = 2.0 * kPi;
   for (int i = 0; i < Bands::n; ++i) {
     const double lam = kVisibleMinNm + i + 0.5;
     // sin²(πΓ/λ) = (1 − cos(2πΓ/λ))/2; parallel polars: cos²(πΓ/λ) = (1 + cos)/2.

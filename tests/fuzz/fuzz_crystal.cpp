@@ -10,11 +10,11 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/plate.h"
 #include "core/base/input_error.h"
@@ -157,7 +157,7 @@ int plate_jones(const std::uint8_t* data, std::size_t size) {
   plate.fresnel = r.byte() & 1;
   const double wavelength_nm = r.number(380, 780);
   // Direction in air: transverse part ρ < 1 (and < n_outside, the plate's precondition).
-  const double rho = r.number(0, 0.999999), phi = r.number(0, 2 * std::numbers::pi);
+  const double rho = r.number(0, 0.999999), phi = r.number(0, 2 * kPi);
   if (!finite3(a.x, a.y, a.z) || !finite3(b.x, b.y, b.z) || !std::isfinite(stage_rad) ||
       !(plate.thickness_um > 0 && plate.thickness_um <= 1e5) ||
       !(plate.n_outside >= 1.0 && plate.n_outside <= 5) || !std::isfinite(wavelength_nm) ||
@@ -230,7 +230,7 @@ void plate_jones_seeds(const std::string&, const std::string& out_dir) {
     w.byte(1);
     w.number(550, 380, 780);
     w.number(rho, 0, 0.999999);
-    w.number(0.4, 0, 2 * std::numbers::pi);
+    w.number(0.4, 0, 2 * kPi);
     write_file(out_dir + "/seed_" + std::to_string(i++) + ".bin", w.bytes());
   };
   for (int m = 0; m < 11; ++m) seed(0, {}, {1, 0, 0}, {0, 0, 1}, 30, 0.3);

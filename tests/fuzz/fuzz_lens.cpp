@@ -8,7 +8,6 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -16,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/input_error.h"
+#include "core/base/units.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
 #include "tests/fuzz/fuzz_support.h"
@@ -131,7 +131,7 @@ int trace_lens(const std::uint8_t* data, std::size_t size) {
   PolarizedRay in;
   in.origin = {r.number(-kPos, kPos), r.number(-kPos, kPos), r.number(-kPos, kPos)};
   glm::dvec3 dir{r.number(-1, 1), r.number(-1, 1), r.number(-1, 1)};
-  const double pol_angle = r.number(0, 2 * std::numbers::pi);
+  const double pol_angle = r.number(0, 2 * kPi);
   in.wavelength_nm = r.number(380, 780);
   in.intensity = r.number(0, 10);
   in.optical_path_mm = r.number(0, 1e6);
@@ -218,7 +218,7 @@ void trace_lens_seeds(const std::string& asset_dir, const std::string& out_dir) 
       w.number(1.0, 1.0, 1.8);
       w.number(0.001, 0.0, 2.0);
       for (int c = 0; c < 6; ++c) w.number(rays[k][c], c < 3 ? -kPos : -1, c < 3 ? kPos : 1);
-      w.number(0.7, 0, 2 * std::numbers::pi);
+      w.number(0.7, 0, 2 * kPi);
       w.number(550, 380, 780);
       w.number(1, 0, 10);
       w.number(0, 0, 1e6);
