@@ -19,6 +19,7 @@
 
 #include "app/cli_policy.h"
 #include "core/base/asset_locator.h"
+#include "core/base/units.h"
 #include "core/io/image_file.h"
 #include "core/base/input_error.h"
 #include "core/scene3d/experiment_images.h"
@@ -333,7 +334,7 @@ int run_brewster(const Common& c) {
   nlohmann::json j = load_json(file);
   if (c.quick) set_size(j, 96, 72);
   const double n = find_medium("N-BK7").nd();
-  const double theta_b = std::atan(n) * 180.0 / M_PI;
+  const double theta_b = std::atan(n) * 180.0 / pmsim::kPi;
   std::printf("Brewster: N-BK7 plate (n_d = %.4f), camera at %.2f deg from the normal (Brewster),"
               " %dx%d, RGB mode\n", n, theta_b, j["camera"]["width"].get<int>(),
               j["camera"]["height"].get<int>());
@@ -355,7 +356,7 @@ int run_brewster(const Common& c) {
               " (Fresnel)\n");
   const glm::dvec3 target(0, 4, 0);
   for (double a : {40.0, 45.0, 50.0, 55.0, theta_b, 58.0, 62.0, 66.0, 70.0}) {
-    const double ar = a * M_PI / 180.0;
+    const double ar = a * pmsim::kPi / 180.0;
     nlohmann::json jj = j;
     jj["camera"]["position"] = {0.0, 4.0 + 90.0 * std::cos(ar), 90.0 * std::sin(ar)};
     const Scene3dDescription d = parse_scene3d(jj, file);

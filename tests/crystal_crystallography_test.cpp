@@ -191,7 +191,9 @@ TEST(Crystallography, MicasExtinguishNearlyParallelToTheirCleavage) {
       const Extinction e = extinction_from(s, plane_trace(s.normal, cleavage));
       EXPECT_LE(e.angle_deg, 3.5) << name << " " << plane;
       EXPECT_TRUE(e.nearer_is_slow) << name << " " << plane;  // micas are length-slow
-      if (std::string(plane) == "(100)") EXPECT_NEAR(e.angle_deg, 0.0, 1e-9) << name;
+      if (std::string(plane) == "(100)") {
+        EXPECT_NEAR(e.angle_deg, 0.0, 1e-9) << name;
+      }
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <random>
 
+#include "core/base/units.h"
 #include "core/lens/lens_tracer.h"
 
 using namespace pmsim;
@@ -216,7 +217,7 @@ TEST(LensTir, StopReportsAndSplitContinuesWithThePapersPhases) {
       ++callbacks;
       EXPECT_EQ(rays.size(), 2u);  // both ⊥ and ∥ parts present for a 45° input v_p
       // The two parts carry different δ (TIR phases are not multiples of π).
-      EXPECT_GT(std::abs(std::remainder(rays[0].delta_rad - rays[1].delta_rad, M_PI)), 1e-3);
+      EXPECT_GT(std::abs(std::remainder(rays[0].delta_rad - rays[1].delta_rad, pmsim::kPi)), 1e-3);
     };
     LensBundle bs;
     trace_lens(g, m, in, split, bs);

@@ -4,13 +4,14 @@
 #include <cmath>
 #include <random>
 
+#include "core/base/units.h"
 #include "core/optics/fresnel.h"
 #include "core/optics/schlick.h"
 
 using namespace pmsim;
 
 namespace {
-double cos_from_deg(double deg) { return std::cos(deg * M_PI / 180.0); }
+double cos_from_deg(double deg) { return std::cos(deg * pmsim::kPi / 180.0); }
 }  // namespace
 
 TEST(FresnelNormalIncidence, ReflectanceIsFourPercentForGlassOfIndexOnePointFive) {
@@ -50,7 +51,7 @@ TEST(FresnelOblique, AmplitudeRatiosAt45DegreesFromAirToGlass) {
 TEST(FresnelOblique, PaperAngleFormulasAgreeWithCosineForms) {
   // The paper's four formulas in angles, evaluated directly at α = 50°, n21 = 1.7; agreement to
   // 1e-14 (both are O(1) expressions of well-conditioned trig values).
-  const double a = 50.0 * M_PI / 180.0, n21 = 1.7;
+  const double a = 50.0 * pmsim::kPi / 180.0, n21 = 1.7;
   const double g = std::asin(std::sin(a) / n21);
   const FresnelAmplitudes f = fresnel_amplitudes(std::cos(a), n21);
   EXPECT_NEAR(f.r_s.real(), -std::sin(a - g) / std::sin(a + g), 1e-14);
@@ -96,7 +97,7 @@ TEST(FresnelTir, StartsExactlyAtTheCriticalAngle) {
 TEST(FresnelTir, ReflectionIsTotalWithThePapersPhases) {
   const double eta = 1.0 / 1.5;
   for (double deg : {42.0, 50.0, 60.0, 75.0, 89.0}) {
-    const double a = deg * M_PI / 180.0;
+    const double a = deg * pmsim::kPi / 180.0;
     const FresnelAmplitudes f = fresnel_amplitudes(std::cos(a), eta);
     ASSERT_TRUE(f.tir) << deg;
     EXPECT_NEAR(std::abs(f.r_s), 1.0, 1e-15);  // |r| = 1: a unit-modulus polar value
@@ -104,7 +105,7 @@ TEST(FresnelTir, ReflectionIsTotalWithThePapersPhases) {
     EXPECT_EQ(f.T_s(), 0.0);
     const double q = std::sqrt(std::sin(a) * std::sin(a) - eta * eta);
     const double d_perp = 2 * std::atan(q / std::cos(a));              // paper δ⊥
-    const double d_par = 2 * std::atan(q / (eta * eta * std::cos(a))) - M_PI;  // paper δ∥
+    const double d_par = 2 * std::atan(q / (eta * eta * std::cos(a))) - pmsim::kPi;  // paper δ∥
     // r = e^(−iδ); compare the complex numbers (phase wrap-free), 1e-14 for trig rounding.
     EXPECT_NEAR(std::abs(f.r_s - std::polar(1.0, -d_perp)), 0.0, 1e-14) << deg;
     EXPECT_NEAR(std::abs(f.r_p - std::polar(1.0, -d_par)), 0.0, 1e-14) << deg;
@@ -116,7 +117,7 @@ TEST(FresnelTir, MaximumRetardanceMatchesClosedForm) {
   // maximal at cos²θ = (1 − η²)/(1 + η²) where Δmax = 2·atan((1 − η²)/(2η)).
   for (double n : {1.5, 1.7847, 2.4}) {
     const double eta = 1.0 / n;
-    auto retard = [&](double c) { return tir_delta_p(c, eta) + M_PI - tir_delta_s(c, eta); };
+    auto retard = [&](double c) { return tir_delta_p(c, eta) + pmsim::kPi - tir_delta_s(c, eta); };
     const double c_max = std::sqrt((1 - eta * eta) / (1 + eta * eta));
     const double expect = 2 * std::atan((1 - eta * eta) / (2 * eta));
     EXPECT_NEAR(retard(c_max), expect, 1e-13) << n;  // trig rounding of O(1) angles

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <random>
 
+#include "core/base/units.h"
 #include "core/optics/beer_lambert.h"
 #include "core/optics/interaction.h"
 
@@ -55,7 +56,7 @@ TEST(InterfaceNormalIncidence, AnyPolarizationReflectsAsMinusPointTwoTimesTheFie
   // Normal incidence from n=1 onto n=1.5: the reflected field is ((n1−n2)/(n1+n2))·E = −0.2·E and
   // the refracted field 0.8·E as vectors, for every v_p (no basis jump, no NaN).
   for (int k = 0; k < 16; ++k) {
-    const double a = k * M_PI / 8;
+    const double a = k * pmsim::kPi / 8;
     const PolarizedRay in = make_ray({0, 0, 1}, {std::cos(a), std::sin(a), 0});
     InteractionResult res;
     interact(in, {0, 0, 0}, {0, 0, -1}, 1.0, 1.5, FresnelModel::Exact, res);
@@ -96,7 +97,7 @@ TEST(InterfaceBrewster, PParallelLightIsNotReflectedAtBrewsterAngle) {
 }
 
 TEST(InterfaceTir, SplitsIntoPerpendicularAndParallelRaysWithPaperPhases) {
-  const double a = 60 * M_PI / 180, eta = 1.0 / 1.5;
+  const double a = 60 * pmsim::kPi / 180, eta = 1.0 / 1.5;
   const glm::dvec3 d{std::sin(a), 0, std::cos(a)};
   // 30% of the intensity in E⊥ (along ±y), 70% in E∥.
   const glm::dvec3 s_dir = glm::normalize(glm::cross(d, glm::dvec3(0, 0, 1)));
@@ -113,7 +114,7 @@ TEST(InterfaceTir, SplitsIntoPerpendicularAndParallelRaysWithPaperPhases) {
   EXPECT_NEAR(res.reflected[1].intensity, 1.4, 1e-15);
   const double q = std::sqrt(std::sin(a) * std::sin(a) - eta * eta);
   EXPECT_NEAR(res.reflected[0].delta_rad, 0.25 + 2 * std::atan(q / std::cos(a)), 1e-14);
-  EXPECT_NEAR(res.reflected[1].delta_rad, 0.25 + 2 * std::atan(q / (eta * eta * std::cos(a))) - M_PI, 1e-14);
+  EXPECT_NEAR(res.reflected[1].delta_rad, 0.25 + 2 * std::atan(q / (eta * eta * std::cos(a))) - pmsim::kPi, 1e-14);
   EXPECT_NEAR(glm::length(glm::cross(res.reflected[0].pol, s_dir)), 0.0, 1e-15);  // E⊥ stays ⟂
   EXPECT_NEAR(glm::dot(res.reflected[1].pol, res.reflected[1].dir), 0.0, 1e-15);
 }
@@ -148,7 +149,7 @@ TEST(BeerLambert, IntensityDecaysExponentiallyOverKnownPath) {
               beer_lambert_transmittance(0.3, 3.5), 1e-15);
   EXPECT_DOUBLE_EQ(optical_path_mm(1.5, 2.0), 3.0);
   // 1 mm of optical path is 1e6/λ[nm] waves.
-  EXPECT_NEAR(propagation_phase_rad(0.5e-3, 500.0), 2 * M_PI, 1e-12);
+  EXPECT_NEAR(propagation_phase_rad(0.5e-3, 500.0), 2 * pmsim::kPi, 1e-12);
 }
 
 TEST(PolarizationFrame, IsRightHandedForIncidentAndRefractedAndIndependentOfNormalSign) {
@@ -182,7 +183,7 @@ TEST(PolarizationFrame, IsRightHandedForIncidentAndRefractedAndIndependentOfNorm
 TEST(InterfaceOblique, ReflectedFieldAgreesWithBornAndWolfInTheirFrame) {
   // Independent check of the frame convention: Born & Wolf write the reflected field with a
   // right-handed frame (s, p_BW, r), p_BW = r × s = −p_r, and r∥ = tg(α−γ)/tg(α+γ) (no sign flip).
-  const double a = 35 * M_PI / 180, n21 = 1.5;
+  const double a = 35 * pmsim::kPi / 180, n21 = 1.5;
   const double gam = std::asin(std::sin(a) / n21);
   const glm::dvec3 d{std::sin(a), 0, std::cos(a)}, N{0, 0, -1};
   const PolarizedRay in = make_ray(d, {0.3, 0.8, -0.3 * std::sin(a) / std::cos(a)});

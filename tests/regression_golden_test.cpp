@@ -30,6 +30,9 @@ struct GoldenCase {
   std::vector<std::string> settings;
 };
 
+// gtest prints a parameter in failure messages: its name, not its bytes.
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<GoldenCase> read_manifest() {
   std::vector<GoldenCase> cases;
   std::ifstream f(kSource + "/tests/golden/manifest.txt");

@@ -133,7 +133,9 @@ TEST(MineralFileInput, NumberOverflowIsAnInputErrorNotAJsonException) {
   text.replace(text.find("\"indices\""), 9, "\"x\":1e400,\"indices\"");
   const std::string path = d.file("overflow.json", text);
   auto e = input_error_of([&] { load_mineral_file(path); });
-  if (e) EXPECT_EQ(e->file, path);
+  if (e) {
+    EXPECT_EQ(e->file, path);
+  }
 }
 
 TEST(MineralFileInput, BrokenFilesNameTheFile) {
@@ -209,16 +211,22 @@ TEST(DataFileInput, AFolderGivenAsTheFileIsAnInputError) {
   ScratchDir d;
   const std::string folder = d.path().string();
   auto m = input_error_of([&] { load_medium_file(folder); });
-  if (m) EXPECT_EQ(m->file, folder);
+  if (m) {
+    EXPECT_EQ(m->file, folder);
+  }
   auto c = input_error_of([&] { load_mineral_file(folder); });
-  if (c) EXPECT_EQ(c->file, folder);
+  if (c) {
+    EXPECT_EQ(c->file, folder);
+  }
 }
 
 TEST(LensFileInput, AFolderGivenAsTheLensFileIsAnInputError) {
   // Finding F5 (load_lens_spec).
   ScratchDir d;
   auto e = input_error_of([&] { load_lens_spec(d.path().string()); });
-  if (e) EXPECT_EQ(e->file, d.path().string());
+  if (e) {
+    EXPECT_EQ(e->file, d.path().string());
+  }
 }
 
 TEST(LensFileInput, NumberOverflowIsAnInputErrorNotAJsonException) {
@@ -226,7 +234,9 @@ TEST(LensFileInput, NumberOverflowIsAnInputErrorNotAJsonException) {
   ScratchDir d;
   const std::string path = d.file("l.json", R"({"glass":"N-BK7","radius_mm":1e400,"ledge_mm":1})");
   auto e = input_error_of([&] { load_lens_spec(path); });
-  if (e) EXPECT_EQ(e->file, path);
+  if (e) {
+    EXPECT_EQ(e->file, path);
+  }
 }
 
 }  // namespace

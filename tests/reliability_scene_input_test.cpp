@@ -156,7 +156,9 @@ TEST(SceneFileInput, AFolderGivenAsTheSceneFileIsAnInputError) {
   // through nlohmann's parser. Finding F5.
   ScratchDir d;
   auto e = input_error_of([&] { load_scene_file(d.path().string()); });
-  if (e) EXPECT_EQ(e->file, d.path().string());
+  if (e) {
+    EXPECT_EQ(e->file, d.path().string());
+  }
 }
 
 TEST(SceneFileInput, EveryAssetSceneLoadsWithoutWarnings) {

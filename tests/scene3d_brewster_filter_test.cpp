@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/units.h"
 #include "core/materials/medium.h"
 #include "core/optics/fresnel.h"
 #include "core/scene3d/experiment_images.h"
@@ -30,7 +31,7 @@ double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * 
 // plate's centre.
 double crossed_over_parallel(double deg) {
   nlohmann::json j = brewster_scene();
-  const double a = deg * M_PI / 180.0;
+  const double a = deg * pmsim::kPi / 180.0;
   j["camera"]["position"] = {0.0, 4.0 + 90.0 * std::cos(a), 90.0 * std::sin(a)};
   const Scene3dDescription d = parse_scene3d(j, "brewster");
   const Scene3dWorld world(d);
@@ -44,7 +45,7 @@ double crossed_over_parallel(double deg) {
 
 TEST(PolarizingFilter, ReflectionVanishesAtBrewsterThroughACrossedFilter) {
   const double n = find_medium("N-BK7").nd();
-  const double theta_b = std::atan(n) * 180.0 / M_PI;  // tan θB = n2/n1 (paper §6)
+  const double theta_b = std::atan(n) * 180.0 / pmsim::kPi;  // tan θB = n2/n1 (paper §6)
   // At θB r_p = 0 at the top face, and the refracted ray meets the bottom face at the inner
   // Brewster angle, so no p light comes back at all: zero up to the float rounding of the
   // camera position (|Δθ| ~ 1e-7 rad gives R_p/R_s ~ 1e-13).
@@ -53,7 +54,7 @@ TEST(PolarizingFilter, ReflectionVanishesAtBrewsterThroughACrossedFilter) {
   // the same ratio at these angles where the bottom's echo is dark); 2 % covers the second
   // face's small contribution and proves the ratio is not trivially zero.
   for (double deg : {45.0, 50.0}) {
-    const FresnelAmplitudes f = fresnel_amplitudes(std::cos(deg * M_PI / 180.0), n);
+    const FresnelAmplitudes f = fresnel_amplitudes(std::cos(deg * pmsim::kPi / 180.0), n);
     EXPECT_NEAR(crossed_over_parallel(deg), f.R_p() / f.R_s(), 0.02 * f.R_p() / f.R_s()) << deg;
   }
 }
@@ -83,7 +84,7 @@ TEST(PolarizingFilter, RenderedReflectionNearBrewsterIsDarkThroughTheCrossedFilt
           h.kind != Scene3dSurfaceKind::Glass)
         continue;
       const double theta = std::acos(std::abs(glm::dot(dir, h.normal)));
-      if (std::abs(theta - theta_b) > 0.5 * M_PI / 180.0) continue;
+      if (std::abs(theta - theta_b) > 0.5 * pmsim::kPi / 180.0) continue;
       // Off the image's centre column the plane of incidence turns away from the filter axis
       // and s light leaks in as (s·a)², as in a real photograph; keep pixels with (s·a)² < 9e-4.
       const glm::dvec3 s_dir = glm::normalize(glm::cross(dir, h.normal));

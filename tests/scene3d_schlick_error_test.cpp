@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 
+#include "core/base/units.h"
 #include "core/optics/fresnel.h"
 #include "core/optics/schlick.h"
 #include "core/scene3d/experiment_images.h"
@@ -28,7 +29,7 @@ TEST(SchlickVsFresnel, ZeroAtNormalIncidenceLargestNearGrazing) {
     double worst = 0.0, worst_deg = 0.0;
     for (int k = 0; k < 900; ++k) {
       const double deg = 0.1 * k;
-      const double e = schlick_error(deg * M_PI / 180.0, eta);
+      const double e = schlick_error(deg * pmsim::kPi / 180.0, eta);
       if (e > worst) {
         worst = e;
         worst_deg = deg;
@@ -38,8 +39,8 @@ TEST(SchlickVsFresnel, ZeroAtNormalIncidenceLargestNearGrazing) {
     // Fresnel curve bends up steeply, beyond 70° for these indices (closed forms evaluated on a
     // 0.1° grid; the error near normal incidence is below 1e-3 of R0).
     EXPECT_GT(worst_deg, 70.0) << "eta " << eta;
-    EXPECT_GT(worst, 10.0 * schlick_error(30.0 * M_PI / 180.0, eta)) << "eta " << eta;
-    EXPECT_LT(schlick_error(5.0 * M_PI / 180.0, eta), 1e-3 * schlick_reflectance(1.0, eta));
+    EXPECT_GT(worst, 10.0 * schlick_error(30.0 * pmsim::kPi / 180.0, eta)) << "eta " << eta;
+    EXPECT_LT(schlick_error(5.0 * pmsim::kPi / 180.0, eta), 1e-3 * schlick_reflectance(1.0, eta));
   }
 }
 
@@ -72,10 +73,10 @@ TEST(SchlickVsFresnel, Fig4DifferenceConcentratesWhereTheLensIsSeenAtGrazingInci
         continue;
       }
       const double cos_i = std::abs(glm::dot(dir, h.normal));
-      if (cos_i > std::cos(20.0 * M_PI / 180.0)) {
+      if (cos_i > std::cos(20.0 * pmsim::kPi / 180.0)) {
         sum_normal += diff;
         ++n_normal;
-      } else if (cos_i < std::cos(50.0 * M_PI / 180.0)) {
+      } else if (cos_i < std::cos(50.0 * pmsim::kPi / 180.0)) {
         sum_grazing += diff;
         ++n_grazing;
       }

@@ -1,3 +1,4 @@
+#include "core/base/units.h"
 #include "core/bench/physical_lens_model.h"
 
 #include <chrono>
@@ -290,7 +291,7 @@ double crystal_band_intensity(const ModalPoint& m, const CVec2& e_s, const CMat2
   const cd a1 = m.t1 * (d1.x * e_s.x + d1.y * e_s.y), a2 = m.t2 * (d2.x * e_s.x + d2.y * e_s.y);
   const CVec2 f1 = path_jones * CVec2{a1 * e1.x, a1 * e1.y};
   const CVec2 f2 = path_jones * CVec2{a2 * e2.x, a2 * e2.y};
-  const double lambda = wavelength_nm, two_pi = 2.0 * std::numbers::pi;
+  const double lambda = wavelength_nm, two_pi = 2.0 * kPi;
   const double phi = two_pi * m.gamma_nm / lambda;
   const double dphi = two_pi * (m.dgamma_dnm / lambda - m.gamma_nm / (lambda * lambda));
   const double x = 0.5 * dphi * band_nm;

@@ -1,3 +1,4 @@
+#include "core/base/units.h"
 #include "core/microscope/lens_ghosts.h"
 
 #include <algorithm>
@@ -252,7 +253,7 @@ void place_ghosts(const GhostInputs& in, const SourceDirection& src, const std::
 // ghost in one band (zero where the ghost misses its aperture).
 void band_amplitudes(const SourceDirection& src, const TrainState& train, const JonesMatrix& sample_jones,
                      double wavelength_nm, const std::vector<LensGhostPath>& paths, CellScratch& scratch) {
-  const double two_pi = 2.0 * std::numbers::pi;
+  const double two_pi = 2.0 * kPi;
   const double lam_mm = wavelength_nm * 1e-6;
   scratch.amp_objective.assign(paths.size() * train.outputs, complexd(0.0));
   scratch.amp_condenser.assign(paths.size() * train.outputs, complexd(0.0));
@@ -298,7 +299,7 @@ double coherent_group_intensity(const std::vector<LensGhostPath>& paths, const C
         } else {
           const double dO_nm = (paths[group[a]].optical_path_mm - paths[group[c]].optical_path_mm) * 1e6;
           intensity += 2.0 * std::real(x * std::conj(y)) *
-                       sinc(std::numbers::pi * dO_nm * band_width_nm / (wavelength_nm * wavelength_nm));
+                       sinc(kPi * dO_nm * band_width_nm / (wavelength_nm * wavelength_nm));
         }
       }
   return intensity;

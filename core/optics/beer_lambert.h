@@ -2,6 +2,8 @@
 // Propagation inside a homogeneous isotropic medium (paper §6): optical path and absorption.
 #include <cmath>
 
+#include "core/base/units.h"
+
 namespace pmsim {
 
 // Optical path O_p = n·S (paper §6; Born & Wolf §3.3.1).
@@ -14,7 +16,7 @@ inline double beer_lambert_transmittance(double attenuation_per_mm, double lengt
 
 // Propagation phase 2π·O_p/λ (paper §6: dφ = 2π·O_p/λ − δ). O_p in mm, λ in nm.
 inline double propagation_phase_rad(double optical_path_mm, double wavelength_nm) {
-  return 2.0 * M_PI * (optical_path_mm * 1e6 / wavelength_nm);
+  return 2.0 * kPi * (optical_path_mm * 1e6 / wavelength_nm);
 }
 
 }  // namespace pmsim

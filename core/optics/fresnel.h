@@ -18,6 +18,8 @@
 #include <cmath>
 #include <complex>
 
+#include "core/base/units.h"
+
 namespace pmsim {
 
 struct FresnelAmplitudes {
@@ -54,7 +56,7 @@ inline double tir_delta_s(double cos_i, double eta) {
 inline double tir_delta_p(double cos_i, double eta) {
   const double sin2_i = std::max(0.0, (1.0 - cos_i) * (1.0 + cos_i));
   const double q = std::sqrt(std::max(0.0, sin2_i - eta * eta));
-  return 2.0 * std::atan2(q, eta * eta * cos_i) - M_PI;
+  return 2.0 * std::atan2(q, eta * eta * cos_i) - kPi;
 }
 
 inline FresnelAmplitudes fresnel_amplitudes(double cos_i, double eta) {
@@ -100,6 +102,6 @@ inline double fresnel_reflectance_unpolarized(double cos_i, double eta) {
 
 // Brewster angle tg β = n2/n1 (paper §6), and the critical angle sin θc = n2/n1 (n2 < n1).
 inline double brewster_angle_rad(double eta) { return std::atan(eta); }
-inline double critical_angle_rad(double eta) { return eta < 1.0 ? std::asin(eta) : M_PI / 2; }
+inline double critical_angle_rad(double eta) { return eta < 1.0 ? std::asin(eta) : kPi / 2; }
 
 }  // namespace pmsim

@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 #include <cmath>
 
+#include "core/base/units.h"
 #include "core/scene3d/scene3d_description.h"
 
 namespace pmsim {
@@ -15,10 +16,10 @@ class PinholeCamera {
     fwd_ = glm::normalize(c.look_at - c.position);
     right_ = glm::normalize(glm::cross(fwd_, c.up));
     up_ = glm::cross(right_, fwd_);
-    half_h_ = std::tan(0.5 * c.fov_deg * M_PI / 180.0);
+    half_h_ = std::tan(0.5 * c.fov_deg * kPi / 180.0);
     half_w_ = half_h_ * c.width / c.height;
     if (c.filter_angle_deg) {
-      const double a = *c.filter_angle_deg * M_PI / 180.0;
+      const double a = *c.filter_angle_deg * kPi / 180.0;
       filter_dir_ = std::cos(a) * right_ + std::sin(a) * up_;
     }
   }

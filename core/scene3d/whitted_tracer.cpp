@@ -1,3 +1,4 @@
+#include "core/base/units.h"
 #include "core/scene3d/whitted_tracer.h"
 
 #include <algorithm>
@@ -22,7 +23,7 @@ namespace pmsim {
 namespace {
 
 constexpr double kRgbWavelengthNm = 587.5618;  // helium d line: n_d, the catalogue index
-constexpr double kInvPi = 1.0 / M_PI;
+constexpr double kInvPi = 1.0 / kPi;
 
 // Σ_i w_i·S(λ_i)·ȳ(λ_i) over the paper's 81 wavelengths: the luminance of illuminant S.
 struct SpectralFrame {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <glm/mat3x3.hpp>
 
+#include "core/base/units.h"
+
 namespace pmsim {
 
 namespace {
@@ -67,7 +69,7 @@ glm::dvec3 xyz_to_lab(const glm::dvec3& xyz, const glm::dvec3& white_xyz) {
 // CIEDE2000 (CIE 142-2001), written as in Sharma, Wu & Dalal, Color Res. Appl. 30 (2005) 21–30,
 // eqs. (1)–(22), with k_L = k_C = k_H = 1; hue angles in degrees as in the paper.
 double ciede2000(const glm::dvec3& lab1, const glm::dvec3& lab2) {
-  constexpr double pi = 3.14159265358979323846;
+  constexpr double pi = kPi;
   constexpr double deg = 180.0 / pi;
   constexpr double pow25_7 = 6103515625.0;  // 25^7
   const double L1 = lab1.x, a1 = lab1.y, b1 = lab1.z;
