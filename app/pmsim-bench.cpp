@@ -45,30 +45,38 @@ int main(int argc, char** argv) {
   opt.cache_dir = default_cache_dir();
   std::string json_path, out_dir, from_json, size, threads;
   bool no_throughput = false;
-  CLI::App app{"Renders the bench scenes with every strategy and measures time and CIEDE2000 against "
-               "converged references.",
-               kProgram};
+  CLI::App app{
+      "Renders the bench scenes with every strategy and measures time and CIEDE2000 against "
+      "converged references.",
+      kProgram};
   pmsim::cli::last_value_wins(app);
   app.add_flag("--quick", opt.quick, "smaller images and fewer throughput rays");
   app.add_option("--json", json_path, "write the rows as JSON")->type_name("FILE");
   app.add_option("--out-dir", out_dir, "write frontier.md and frontier.png there")->type_name("DIR");
   app.add_option("--size", size, "image side in pixels, 8..4096 (default 512, quick 96)")->type_name("N");
   app.add_option("--threads", threads, "worker threads (0: all cores)")->type_name("N");
-  app.add_option("--cache-dir", opt.cache_dir, "folder of the cached references")->type_name("DIR")->capture_default_str();
+  app.add_option("--cache-dir", opt.cache_dir, "folder of the cached references")
+      ->type_name("DIR")
+      ->capture_default_str();
   app.add_flag("--no-throughput", no_throughput, "skip the ray-throughput measurement");
   app.add_option("--scene", opt.scene_filter, "only the scenes whose name contains it")->type_name("SUBSTR");
-  app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")->type_name("SUBSTR");
-  app.add_option("--images", opt.images_dir, "write every image (and the references) as PNG there")->type_name("DIR");
-  app.add_option("--from-json", from_json, "redraw table, plot and markdown from its rows (no run)")->type_name("FILE");
+  app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")
+      ->type_name("SUBSTR");
+  app.add_option("--images", opt.images_dir, "write every image (and the references) as PNG there")
+      ->type_name("DIR");
+  app.add_option("--from-json", from_json, "redraw table, plot and markdown from its rows (no run)")
+      ->type_name("FILE");
   pmsim::cli::parse_or_exit(app, argc, argv);
   try {
     if (app.count("--size")) {
       opt.size = parse_int("--size", size.c_str());
-      if (opt.size < 8 || opt.size > 4096) throw pmsim::InputError("", "--size", std::to_string(opt.size), "must be in 8…4096");
+      if (opt.size < 8 || opt.size > 4096)
+        throw pmsim::InputError("", "--size", std::to_string(opt.size), "must be in 8…4096");
     }
     if (app.count("--threads")) {
       opt.threads = parse_int("--threads", threads.c_str());
-      if (opt.threads < 0) throw pmsim::InputError("", "--threads", std::to_string(opt.threads), "must be ≥ 0");
+      if (opt.threads < 0)
+        throw pmsim::InputError("", "--threads", std::to_string(opt.threads), "must be ≥ 0");
     }
     if (no_throughput) opt.throughput_rays = -1;
   } catch (const pmsim::InputError& e) {
@@ -90,7 +98,8 @@ int main(int argc, char** argv) {
       rep = pmsim::run_bench(opt, std::cerr);
     }
     std::cout << pmsim::bench_table(rep);
-    if (!json_path.empty()) pmsim::write_text_atomically(json_path, pmsim::bench_report_json(rep).dump(1) + "\n");
+    if (!json_path.empty())
+      pmsim::write_text_atomically(json_path, pmsim::bench_report_json(rep).dump(1) + "\n");
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
       pmsim::write_frontier_plot(rep, (std::filesystem::path(out_dir) / "frontier.png").string());

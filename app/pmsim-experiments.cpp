@@ -52,9 +52,7 @@ nlohmann::json load_json(const std::string& path) {
   }
 }
 
-double luminance_of(const glm::dvec3& rgb) {
-  return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
-}
+double luminance_of(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 std::string scene_path(const std::string& name) { return asset_dir() + "/scenes3d/" + name; }
 
@@ -63,17 +61,15 @@ void set_size(nlohmann::json& j, int w, int h) {
   j["camera"]["height"] = h;
 }
 
-void write_png(const Common& c, const std::string& name, int w, int h,
-               const std::vector<float>& rgb, const nlohmann::json& meta) {
+void write_png(const Common& c, const std::string& name, int w, int h, const std::vector<float>& rgb,
+               const nlohmann::json& meta) {
   fs::create_directories(c.out_dir);
   const std::string path = (fs::path(c.out_dir) / name).string();
   write_image(path, w, h, rgb, meta);
   std::printf("  wrote %s\n", path.c_str());
 }
 
-Scene3dImage render(const nlohmann::json& j, const std::string& file) {
-  return render_scene3d(j, file);
-}
+Scene3dImage render(const nlohmann::json& j, const std::string& file) { return render_scene3d(j, file); }
 
 // ---------------------------------------------------------------------------------------------
 int run_fig3(const Common& c) {
@@ -93,13 +89,17 @@ int run_fig3(const Common& c) {
   const DifferenceStats d = difference_stats(rgb.rgb_linear, spec.rgb_linear, mask);
   const TirSpotStats tir = tir_spot_stats(parse_scene3d(js, file), spec.rgb_linear, mask);
   std::printf("  (a) RGB, one index n_d          : %8.0f ms\n", rgb.time_ms);
-  std::printf("  (b) spectral, 81 wavelengths    : %8.0f ms  (%.1fx the RGB time)\n",
-              spec.time_ms, spec.time_ms / std::max(1e-9, rgb.time_ms));
-  std::printf("  (c) |spectral - RGB| mean (linear sRGB): through the lens %.4f, elsewhere %.4f;"
-              " max %.3f\n", d.mean_inside, d.mean_outside, d.max);
-  std::printf("  TIR spot: %d of %d lens pixels are black (luminance < %.3f) in the spectral image;"
-              " %d of them have a camera ray whose SML tree stops at TIR with > 50%% of its"
-              " intensity\n", tir.dark_pixels, mask.count, tir.threshold, tir.dark_with_tir);
+  std::printf("  (b) spectral, 81 wavelengths    : %8.0f ms  (%.1fx the RGB time)\n", spec.time_ms,
+              spec.time_ms / std::max(1e-9, rgb.time_ms));
+  std::printf(
+      "  (c) |spectral - RGB| mean (linear sRGB): through the lens %.4f, elsewhere %.4f;"
+      " max %.3f\n",
+      d.mean_inside, d.mean_outside, d.max);
+  std::printf(
+      "  TIR spot: %d of %d lens pixels are black (luminance < %.3f) in the spectral image;"
+      " %d of them have a camera ray whose SML tree stops at TIR with > 50%% of its"
+      " intensity\n",
+      tir.dark_pixels, mask.count, tir.threshold, tir.dark_with_tir);
   write_png(c, "fig3a_rgb.png", rgb.width, rgb.height, rgb.rgb_linear, rgb.settings);
   write_png(c, "fig3b_spectral.png", spec.width, spec.height, spec.rgb_linear, spec.settings);
   write_png(c, "fig3c_difference.png", spec.width, spec.height,
@@ -170,13 +170,15 @@ int run_cone_table(const Common& c) {
   // docs/experiments/README-section.md for why).
   const ConeScene scenes[2] = {{"Left", 12.5, true, kPaperLeft}, {"Right", 8.5, false, kPaperRight}};
   RayConeSetup base;
-  std::printf("Section 8, Fig. 6: ray cone of a lens. Rs = 8, 6, 4.3 mm, RL = 4.25 mm, ledge 0.3 mm,"
-              " OC = 12.5 / 8.5 mm and infinity.\n");
-  std::printf("Choices where the paper is silent: %s; left scene = curved face to the camera,"
-              " right scene = flat face to the camera; natural light (both polarization halves);"
-              " %d rays across the cone radius; a TIR neither ends a path (it is not a ledge hit) nor"
-              " its branch (SML mode 2); paths with TIR at P2 (no Out2) are left out of Table 2.\n",
-              describe(base).c_str(), samples);
+  std::printf(
+      "Section 8, Fig. 6: ray cone of a lens. Rs = 8, 6, 4.3 mm, RL = 4.25 mm, ledge 0.3 mm,"
+      " OC = 12.5 / 8.5 mm and infinity.\n");
+  std::printf(
+      "Choices where the paper is silent: %s; left scene = curved face to the camera,"
+      " right scene = flat face to the camera; natural light (both polarization halves);"
+      " %d rays across the cone radius; a TIR neither ends a path (it is not a ledge hit) nor"
+      " its branch (SML mode 2); paths with TIR at P2 (no Out2) are left out of Table 2.\n",
+      describe(base).c_str(), samples);
   const ConeTables t = compute_cone_tables(base, scenes, samples);
 
   std::printf("\nTable 1. eta = Rc/RL (ours | paper)\n");
@@ -185,10 +187,10 @@ int run_cone_table(const Common& c) {
   for (int i = 0; i < 3; ++i) {
     const auto& L = t.r[0][i];
     const auto& R = t.r[1][i];
-    std::printf("  %-4.1f %5.1f%% | %5.1f%%  %5.1f%% | %5.1f%%        %-4.1f %5.1f%% | %5.1f%%  %5.1f%% | %5.1f%%\n",
-                kRs[i], 100 * L[0].eta, 100 * kPaperLeft[i].eta_oc, 100 * L[1].eta,
-                100 * kPaperLeft[i].eta_inf, kRs[i], 100 * R[0].eta, 100 * kPaperRight[i].eta_oc,
-                100 * R[1].eta, 100 * kPaperRight[i].eta_inf);
+    std::printf(
+        "  %-4.1f %5.1f%% | %5.1f%%  %5.1f%% | %5.1f%%        %-4.1f %5.1f%% | %5.1f%%  %5.1f%% | %5.1f%%\n",
+        kRs[i], 100 * L[0].eta, 100 * kPaperLeft[i].eta_oc, 100 * L[1].eta, 100 * kPaperLeft[i].eta_inf,
+        kRs[i], 100 * R[0].eta, 100 * kPaperRight[i].eta_oc, 100 * R[1].eta, 100 * kPaperRight[i].eta_inf);
   }
   std::printf("\nTable 2. Maximum eta4 = I4/I and eta6 = I6/I in that cone (ours | paper)\n");
   for (int k = 0; k < 2; ++k) {
@@ -200,10 +202,10 @@ int run_cone_table(const Common& c) {
       const RayConeResult& R = t.r[1][i][k];
       const PaperCone& pl = kPaperLeft[i];
       const PaperCone& pr = kPaperRight[i];
-      std::printf("  %-4.1f %.3e | %.3e  %.3e | %.3e      %-4.1f %.3e | %.3e  %.3e | %.3e\n",
-                  kRs[i], L.eta4_max, k == 0 ? pl.e4_oc : pl.e4_inf, L.eta6_max,
-                  k == 0 ? pl.e6_oc : pl.e6_inf, kRs[i], R.eta4_max, k == 0 ? pr.e4_oc : pr.e4_inf,
-                  R.eta6_max, k == 0 ? pr.e6_oc : pr.e6_inf);
+      std::printf("  %-4.1f %.3e | %.3e  %.3e | %.3e      %-4.1f %.3e | %.3e  %.3e | %.3e\n", kRs[i],
+                  L.eta4_max, k == 0 ? pl.e4_oc : pl.e4_inf, L.eta6_max, k == 0 ? pl.e6_oc : pl.e6_inf,
+                  kRs[i], R.eta4_max, k == 0 ? pr.e4_oc : pr.e4_inf, R.eta6_max,
+                  k == 0 ? pr.e6_oc : pr.e6_inf);
     }
   }
   {
@@ -212,8 +214,10 @@ int run_cone_table(const Common& c) {
     s.sphere_radius_mm = 4.3;
     s.camera_height_mm = 8.5;
     const RayConeResult r20 = ray_cone_at(s, 0.20, samples);
-    std::printf("\nRight scene, Rs = 4.3, OC = 8.5, cone eta = 20%%: eta4 = %.4g (paper 0.00744892),"
-                " eta6 = %.4g (paper 0.000552532)\n", r20.eta4_max, r20.eta6_max);
+    std::printf(
+        "\nRight scene, Rs = 4.3, OC = 8.5, cone eta = 20%%: eta4 = %.4g (paper 0.00744892),"
+        " eta6 = %.4g (paper 0.000552532)\n",
+        r20.eta4_max, r20.eta6_max);
   }
   // Normal incidence check printed with the tables: eta4(r = 0) = R²/(1 + R² + R⁴) for a lossless
   // lens, R = ((n − 1)/(n + 1))².
@@ -221,9 +225,10 @@ int run_cone_table(const Common& c) {
     const Lens lens(ray_cone_lens(base));
     const double n = lens.media(base.wavelength_nm).n_glass;
     const double R = std::pow((n - 1) / (n + 1), 2);
-    std::printf("On-axis path: n = %.5f, R = %.5f, lossless eta4 = R^2/(1+R^2+R^4) = %.6g,"
-                " eta6 = %.3g\n", n, R, R * R / (1 + R * R + R * R * R * R),
-                R * R * R * R / (1 + R * R + R * R * R * R));
+    std::printf(
+        "On-axis path: n = %.5f, R = %.5f, lossless eta4 = R^2/(1+R^2+R^4) = %.6g,"
+        " eta6 = %.3g\n",
+        n, R, R * R / (1 + R * R + R * R * R * R), R * R * R * R / (1 + R * R + R * R * R * R));
   }
 
   std::printf("\nSensitivity to the unstated parameters (eta in %%, eta4 and eta6 maxima):\n");
@@ -237,12 +242,10 @@ int run_cone_table(const Common& c) {
   add("wavelength 486.13 nm (F)", [](RayConeSetup& s) { s.wavelength_nm = 486.1327; });
   add("wavelength 656.27 nm (C)", [](RayConeSetup& s) { s.wavelength_nm = 656.2725; });
   add("glass N-BK7", [](RayConeSetup& s) { s.glass = "N-BK7"; });
-  add("O at the camera-side vertex", [](RayConeSetup& s) {
-    s.reference = RayConeSetup::Reference::CameraSideVertex;
-  });
+  add("O at the camera-side vertex",
+      [](RayConeSetup& s) { s.reference = RayConeSetup::Reference::CameraSideVertex; });
   add("biconvex lens, both radii Rs", [](RayConeSetup& s) { s.form = RayConeSetup::Form::Biconvex; });
-  add("TIR ends the branch (SML mode 1)",
-      [](RayConeSetup& s) { s.tir_stops_intensity = true; });
+  add("TIR ends the branch (SML mode 1)", [](RayConeSetup& s) { s.tir_stops_intensity = true; });
   add("scenes swapped (left = flat side to camera)", [](RayConeSetup& s) { s.max_depth = -1; });
   std::printf("  %-44s %-5s %-4s | %-26s | %-26s\n", "variant", "scene", "Rs", "finite OC: eta eta4 eta6",
               "OC = inf: eta eta4 eta6");
@@ -298,9 +301,10 @@ int run_fig4(const Common& c) {
     set_size(j, 120, 90);
     j["lights"][0]["samples"] = 2;
   }
-  std::printf("Fig. 4: the Fig. 3 scene under a diffuse unpolarized area source (D65); RGB mode,"
-              " n_d of N-SF11, %dx%d\n", j["camera"]["width"].get<int>(),
-              j["camera"]["height"].get<int>());
+  std::printf(
+      "Fig. 4: the Fig. 3 scene under a diffuse unpolarized area source (D65); RGB mode,"
+      " n_d of N-SF11, %dx%d\n",
+      j["camera"]["width"].get<int>(), j["camera"]["height"].get<int>());
   nlohmann::json js = j, jf = j;
   js["render"]["fresnel"] = "schlick";
   jf["render"]["fresnel"] = "exact";
@@ -314,14 +318,16 @@ int run_fig4(const Common& c) {
   const double ts = lens_pixels_ms(ds, mask, 3), tf = lens_pixels_ms(df, mask, 3);
   std::printf("  Schlick: %8.0f ms   Fresnel: %8.0f ms   whole image, Fresnel/Schlick = %.2f\n",
               schlick.time_ms, fresnel.time_ms, fresnel.time_ms / std::max(1e-9, schlick.time_ms));
-  std::printf("  the %d camera rays that meet the lens (1 thread): Schlick %.0f ms, Fresnel %.0f ms,"
-              " speed ratio %.2f (paper: about 2)\n", mask.count, ts, tf, tf / std::max(1e-9, ts));
-  std::printf("  |Fresnel - Schlick| mean (linear sRGB): through the lens %.4f, elsewhere %.4f;"
-              " max %.3f\n", d.mean_inside, d.mean_outside, d.max);
-  write_png(c, "fig4a_schlick.png", schlick.width, schlick.height, schlick.rgb_linear,
-            schlick.settings);
-  write_png(c, "fig4b_fresnel.png", fresnel.width, fresnel.height, fresnel.rgb_linear,
-            fresnel.settings);
+  std::printf(
+      "  the %d camera rays that meet the lens (1 thread): Schlick %.0f ms, Fresnel %.0f ms,"
+      " speed ratio %.2f (paper: about 2)\n",
+      mask.count, ts, tf, tf / std::max(1e-9, ts));
+  std::printf(
+      "  |Fresnel - Schlick| mean (linear sRGB): through the lens %.4f, elsewhere %.4f;"
+      " max %.3f\n",
+      d.mean_inside, d.mean_outside, d.max);
+  write_png(c, "fig4a_schlick.png", schlick.width, schlick.height, schlick.rgb_linear, schlick.settings);
+  write_png(c, "fig4b_fresnel.png", fresnel.width, fresnel.height, fresnel.rgb_linear, fresnel.settings);
   write_png(c, "fig4c_negative_difference.png", fresnel.width, fresnel.height,
             difference_image(schlick.rgb_linear, fresnel.rgb_linear, 8.0, true), {{"gain", 8.0}});
   return 0;
@@ -335,25 +341,29 @@ int run_brewster(const Common& c) {
   if (c.quick) set_size(j, 96, 72);
   const double n = find_medium("N-BK7").nd();
   const double theta_b = std::atan(n) * 180.0 / pmsim::kPi;
-  std::printf("Brewster: N-BK7 plate (n_d = %.4f), camera at %.2f deg from the normal (Brewster),"
-              " %dx%d, RGB mode\n", n, theta_b, j["camera"]["width"].get<int>(),
-              j["camera"]["height"].get<int>());
+  std::printf(
+      "Brewster: N-BK7 plate (n_d = %.4f), camera at %.2f deg from the normal (Brewster),"
+      " %dx%d, RGB mode\n",
+      n, theta_b, j["camera"]["width"].get<int>(), j["camera"]["height"].get<int>());
   nlohmann::json jp = j, js = j, jn = j;
   jp["camera"]["filter"]["angle_deg"] = 90.0;  // axis in the plane of incidence: crossed
   js["camera"]["filter"]["angle_deg"] = 0.0;   // axis along the s direction
   jn["camera"].erase("filter");
   const Scene3dImage ip = render(jp, file), is = render(js, file), in = render(jn, file);
   const std::size_t centre = (static_cast<std::size_t>(ip.height / 2) * ip.width + ip.width / 2) * 3;
-  std::printf("  centre pixel (reflection of the wall), luminance: no filter %.4f, filter along s"
-              " %.4f, crossed filter %.3g\n", luminance(&in.rgb_linear[centre]),
-              luminance(&is.rgb_linear[centre]), luminance(&ip.rgb_linear[centre]));
+  std::printf(
+      "  centre pixel (reflection of the wall), luminance: no filter %.4f, filter along s"
+      " %.4f, crossed filter %.3g\n",
+      luminance(&in.rgb_linear[centre]), luminance(&is.rgb_linear[centre]),
+      luminance(&ip.rgb_linear[centre]));
   write_png(c, "brewster_no_filter.png", in.width, in.height, in.rgb_linear, in.settings);
   write_png(c, "brewster_filter_s.png", is.width, is.height, is.rgb_linear, is.settings);
   write_png(c, "brewster_filter_crossed.png", ip.width, ip.height, ip.rgb_linear, ip.settings);
 
   // Sweep of the viewing angle: centre ray through the crossed and the parallel filter.
-  std::printf("  angle to normal | I(crossed)/I(s filter), rendered | Rp/Rs of one surface"
-              " (Fresnel)\n");
+  std::printf(
+      "  angle to normal | I(crossed)/I(s filter), rendered | Rp/Rs of one surface"
+      " (Fresnel)\n");
   const glm::dvec3 target(0, 4, 0);
   for (double a : {40.0, 45.0, 50.0, 55.0, theta_b, 58.0, 62.0, 66.0, 70.0}) {
     const double ar = a * pmsim::kPi / 180.0;
@@ -370,8 +380,7 @@ int run_brewster(const Common& c) {
     const double Ip = luminance_of(tracer.trace(o, dir, &p_axis));
     const FresnelAmplitudes f = fresnel_amplitudes(std::cos(ar), n);
     std::printf("  %6.2f deg%s   | %.3e                        | %.3e\n", a,
-                std::abs(a - theta_b) < 1e-9 ? " (B)" : "    ", Ip / std::max(1e-300, Is),
-                f.R_p() / f.R_s());
+                std::abs(a - theta_b) < 1e-9 ? " (B)" : "    ", Ip / std::max(1e-300, Is), f.R_p() / f.R_s());
   }
   return 0;
 }
@@ -381,9 +390,10 @@ int run_vignetting(const Common& c) {
   const std::string file = scene_path("objective_vignetting.json");
   const Objective obj = objective_from_json(load_json(file), file);
   const int grid = c.quick ? 24 : 96, steps = c.quick ? 6 : 11;
-  std::printf("Vignetting (forward tracing with the SML, direct rays only): %s, NA %.2f, %zu"
-              " lenses, %d x %d directions per field point\n", obj.name.c_str(), obj.na,
-              obj.lenses.size(), grid, grid);
+  std::printf(
+      "Vignetting (forward tracing with the SML, direct rays only): %s, NA %.2f, %zu"
+      " lenses, %d x %d directions per field point\n",
+      obj.name.c_str(), obj.na, obj.lenses.size(), grid, grid);
   std::printf("  field height (mm) | rays passing | power transmitted (natural light)\n");
   for (const VignettingPoint& p : vignetting(obj, steps, grid))
     std::printf("  %8.3f          | %6.1f%%      | %6.1f%%\n", p.field_mm, 100 * p.passed,

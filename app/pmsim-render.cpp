@@ -1,7 +1,7 @@
 // pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif [--stats FILE.json]
 // Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
-// scene ("type": "scene3d", core/scene3d), and writes the image atomically. Bad input: a message naming file, key and value on stderr, exit code 2,
-// no output file.
+// scene ("type": "scene3d", core/scene3d), and writes the image atomically. Bad input: a message naming file,
+// key and value on stderr, exit code 2, no output file.
 #include <unistd.h>
 
 #include <chrono>
@@ -72,8 +72,7 @@ bool is_scene3d(const nlohmann::json& j) {
 // at the dot path, creating objects on the way; the 3-D scene parser then checks keys and values.
 void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw pmsim::InputError("", assignment, "", "expected key=value");
+  if (eq == std::string::npos || eq == 0) throw pmsim::InputError("", assignment, "", "expected key=value");
   const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
   if (v.is_discarded()) v = text;
@@ -84,7 +83,8 @@ void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
     const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
     if (part.empty()) throw pmsim::InputError("", key, text, "empty part in the dot path");
     if (!node->is_object())
-      throw pmsim::InputError("", key, text, "'" + key.substr(0, start ? start - 1 : 0) + "' is not an object");
+      throw pmsim::InputError("", key, text,
+                              "'" + key.substr(0, start ? start - 1 : 0) + "' is not an object");
     if (dot == std::string::npos) {
       (*node)[part] = v;
       return;
@@ -96,8 +96,9 @@ void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
 }
 
 void progress_bar(const pmsim::RenderImage& img) {
-  std::fprintf(stderr, "\r%-10s pass %2d  %5d bands  ΔE≈%7.3f  %8.1f ms", img.converged ? "done" : "rendering",
-               img.passes, img.wavelengths, img.error_estimate.value_or(std::nan("")), img.time_ms);
+  std::fprintf(stderr, "\r%-10s pass %2d  %5d bands  ΔE≈%7.3f  %8.1f ms",
+               img.converged ? "done" : "rendering", img.passes, img.wavelengths,
+               img.error_estimate.value_or(std::nan("")), img.time_ms);
   std::fflush(stderr);
 }
 
@@ -110,17 +111,16 @@ bool ends_with_ci(std::string s, const std::string& suf) {
 
 int main(int argc, char** argv) {
   const Args args = parse_args(argc, argv);
-  if (!(ends_with_ci(args.out, ".png") || ends_with_ci(args.out, ".exr") ||
-        ends_with_ci(args.out, ".tif") || ends_with_ci(args.out, ".tiff")))
+  if (!(ends_with_ci(args.out, ".png") || ends_with_ci(args.out, ".exr") || ends_with_ci(args.out, ".tif") ||
+        ends_with_ci(args.out, ".tiff")))
     usage_error("--out must end in .png, .exr or .tif: '" + args.out + "'");
   int width = 0, height = 0;
   std::vector<float> rgb;
   nlohmann::json meta, stats;
   try {
     std::vector<std::string> warnings;
-    const std::string path = args.scene_path.empty()
-                                 ? pmsim::asset_dir() + "/scenes/quartz_section_ortho.json"
-                                 : args.scene_path;
+    const std::string path =
+        args.scene_path.empty() ? pmsim::asset_dir() + "/scenes/quartz_section_ortho.json" : args.scene_path;
     nlohmann::json j = read_scene_json(path);
     if (is_scene3d(j)) {
       for (const std::string& s : args.sets) apply_scene3d_setting(j, s);
@@ -153,13 +153,14 @@ int main(int argc, char** argv) {
       height = img.height;
       rgb = std::move(img.rgb);
       meta = pmsim::scene_to_json(scene);
-      stats = {{"time_ms", img.time_ms},
-               {"samples_per_pixel", img.samples_per_pixel},
-               {"wavelengths", img.wavelengths},
-               {"error_estimate", img.error_estimate ? nlohmann::json(*img.error_estimate) : nlohmann::json()},
-               {"converged", img.converged},
-               {"passes", img.passes},
-               {"model_report", img.model_report}};
+      stats = {
+          {"time_ms", img.time_ms},
+          {"samples_per_pixel", img.samples_per_pixel},
+          {"wavelengths", img.wavelengths},
+          {"error_estimate", img.error_estimate ? nlohmann::json(*img.error_estimate) : nlohmann::json()},
+          {"converged", img.converged},
+          {"passes", img.passes},
+          {"model_report", img.model_report}};
     }
   } catch (const pmsim::InputError& e) {
     std::cerr << kProgram << ": " << e.what() << "\n";

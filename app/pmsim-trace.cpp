@@ -25,7 +25,8 @@ using pmsim::InputError;
 double parse_double(const std::string& key, const std::string& v) {
   char* end = nullptr;
   const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0' || !std::isfinite(x)) throw InputError("", key, v, "expected a finite number");
+  if (v.empty() || *end != '\0' || !std::isfinite(x))
+    throw InputError("", key, v, "expected a finite number");
   return x;
 }
 
@@ -58,12 +59,15 @@ std::string vec(const glm::dvec3& v) {
 
 int run(int argc, char** argv) {
   std::map<std::string, std::string> a;
-  CLI::App app{"Traces one linearly polarized ray through the lens and prints {rays, events, absorbed} as "
-               "JSON.",
-               kProgram};
+  CLI::App app{
+      "Traces one linearly polarized ray through the lens and prints {rays, events, absorbed} as "
+      "JSON.",
+      kProgram};
   // Every value is read as text and checked below, so that a bad one is an InputError naming
   // the option and the value; an option given twice is a usage error.
-  auto option = [&](const std::string& name, const std::string& help) { return app.add_option(name, a[name], help); };
+  auto option = [&](const std::string& name, const std::string& help) {
+    return app.add_option(name, a[name], help);
+  };
   option("--lens", "lens file (JSON)")->type_name("FILE.json")->required();
   option("--origin", "ray origin (mm)")->type_name("x,y,z")->required();
   option("--dir", "ray direction")->type_name("x,y,z")->required();
@@ -74,7 +78,8 @@ int run(int argc, char** argv) {
   option("--delta-rad", "jump-wise phase δ of the ray in rad (default 0)")->type_name("d");
   option("--optical-path-mm", "optical path O_p so far in mm (default 0)")->type_name("O");
   option("--depth", "tracing depth in 0..64 (default 3)")->type_name("dT");
-  option("--tir", "total internal reflection ends the ray or splits it (default stop)")->type_name("stop|split");
+  option("--tir", "total internal reflection ends the ray or splits it (default stop)")
+      ->type_name("stop|split");
   option("--ledge", "rays hitting the ledge end there (the only mode)")->type_name("stop");
   pmsim::cli::parse_or_exit(app, argc, argv);
   auto given = [&](const std::string& name) { return app.count(name) > 0; };
@@ -101,7 +106,8 @@ int run(int argc, char** argv) {
     in.source = int(s);
   }
   if (given("--delta-rad")) in.delta_rad = parse_double("--delta-rad", a["--delta-rad"]);
-  if (given("--optical-path-mm")) in.optical_path_mm = parse_double("--optical-path-mm", a["--optical-path-mm"]);
+  if (given("--optical-path-mm"))
+    in.optical_path_mm = parse_double("--optical-path-mm", a["--optical-path-mm"]);
 
   pmsim::LensTraceOptions opt;
   if (given("--depth")) {
@@ -111,9 +117,12 @@ int run(int argc, char** argv) {
   }
   if (given("--tir")) {
     const std::string& t = a["--tir"];
-    if (t == "stop") opt.tir = pmsim::TirMode::Stop;
-    else if (t == "split") opt.tir = pmsim::TirMode::Split;
-    else throw InputError("", "--tir", t, "expected stop or split");
+    if (t == "stop")
+      opt.tir = pmsim::TirMode::Stop;
+    else if (t == "split")
+      opt.tir = pmsim::TirMode::Split;
+    else
+      throw InputError("", "--tir", t, "expected stop or split");
   }
   if (given("--ledge") && a["--ledge"] != "stop")
     throw InputError("", "--ledge", a["--ledge"], "expected stop");
@@ -147,8 +156,9 @@ int run(int argc, char** argv) {
   for (size_t i = 0; i < b.events.size(); ++i) {
     const pmsim::LensEvent& e = b.events[i];
     if (i) out += ",";
-    out += std::string("{\"type\":\"") + pmsim::to_string(e.type) + "\",\"depth\":" +
-           std::to_string(e.depth) + ",\"intensity\":" + num(e.intensity) + ",\"point\":" + vec(e.point) + "}";
+    out += std::string("{\"type\":\"") + pmsim::to_string(e.type) +
+           "\",\"depth\":" + std::to_string(e.depth) + ",\"intensity\":" + num(e.intensity) +
+           ",\"point\":" + vec(e.point) + "}";
   }
   out += "],\"absorbed\":" + num(b.absorbed) + "}\n";
   std::cout << out << std::flush;

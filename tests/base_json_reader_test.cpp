@@ -54,19 +54,24 @@ TEST(JsonReader, ErrorsNameFileFullKeyPathValueAndReason) {
     const char* reason;
   };
   const Case cases[] = {
-      {error_of([&] { r.require<double>("front.radius_mm"); }), "front.radius_mm", "big", "expected a number"},
+      {error_of([&] { r.require<double>("front.radius_mm"); }), "front.radius_mm", "big",
+       "expected a number"},
       {error_of([&] { r.require<int>("n"); }), "n", "1.5", "expected an integer"},
       {error_of([&] { r.require<bool>("n"); }), "n", "1.5", "expected true or false"},
       {error_of([&] { r.require<std::string>("n"); }), "n", "1.5", "expected a string"},
-      {error_of([&] { r.require_unit_vector("axis"); }), "axis", "[0,0,0]", "a direction cannot be the zero vector"},
+      {error_of([&] { r.require_unit_vector("axis"); }), "axis", "[0,0,0]",
+       "a direction cannot be the zero vector"},
       {error_of([&] { r.require_enum("colour", kColours); }), "colour", "blue", "expected one of red|green"},
       {error_of([&] { r.require<double>("t", Range::above(0)); }), "t", "-1", "must be > 0"},
       {error_of([&] { r.require<double>("t", Range::open_closed(0, 5)); }), "t", "-1", "must be in (0, 5]"},
       {error_of([&] { r.require<double>("nothing"); }), "nothing", "", "missing required key"},
-      {error_of([&] { r.objects("grains")[0].require<double>("w"); }), "grains[0].w", "a", "expected a number"},
+      {error_of([&] { r.objects("grains")[0].require<double>("w"); }), "grains[0].w", "a",
+       "expected a number"},
       {error_of([&] { r.object("sub"); }), "sub", "4", "expected an object"},
-      {error_of([&] { r.refuse_unknown_keys({"front", "n", "axis", "colour", "t", "grains"}); }), "sub", "4",
-       "unknown key"},
+      {error_of([&] {
+         r.refuse_unknown_keys({"front", "n", "axis", "colour", "t", "grains"});
+       }),
+       "sub", "4", "unknown key"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.key);

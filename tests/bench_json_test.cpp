@@ -81,9 +81,11 @@ TEST_F(BenchQuick, JsonRowsKeepTheirShapeAndConvergedStrategiesMatchTheReference
     scenes.insert(r["scene"].get<std::string>());
     strategies.insert(r["strategy"].get<std::string>());
   }
-  for (const char* s : {"quartz-30um-45deg-ortho", "calcite-1mm-cono", "muscovite-bxa-cono", "calcite-1mm-cono-physical"})
+  for (const char* s :
+       {"quartz-30um-45deg-ortho", "calcite-1mm-cono", "muscovite-bxa-cono", "calcite-1mm-cono-physical"})
     EXPECT_TRUE(scenes.count(s)) << s;
-  for (const char* s : {"uniform-81", "rgb-3", "auto", "first-pass", "ideal-lenses", "sml-dT1", "sml-dT3-schlick"})
+  for (const char* s :
+       {"uniform-81", "rgb-3", "auto", "first-pass", "ideal-lenses", "sml-dT1", "sml-dT3-schlick"})
     EXPECT_TRUE(strategies.count(s)) << s;
 
   SCOPED_TRACE("references and converged renders agree with the reference");

@@ -149,7 +149,11 @@ TEST(Crystallography, PrismaticCleavageAnglesInBasalSections) {
 // are ∥ c) equal the tabulated Z ∧ c of monoclinic b = Y minerals: computed from the data, they
 // must land in the published ranges.
 TEST(Crystallography, ExtinctionAnglesOfSectionsParallelTo010) {
-  struct Case { const char* name; double lo, hi; bool to_slow; };
+  struct Case {
+    const char* name;
+    double lo, hi;
+    bool to_slow;
+  };
   for (const Case& k : {Case{"augite", 35, 48, true}, Case{"diopside", 38, 48, true},
                         Case{"hornblende", 12, 34, true}, Case{"gypsum", 38, 38, false}}) {
     const MineralCrystallography& m = data_of(k.name);
@@ -227,7 +231,8 @@ TEST(Crystallography, SignsOfElongation) {
   EXPECT_EQ(sign_in("biotite", normal_of("biotite", "(100)")), SignOfElongation::LengthSlow);
   // A basal section of a uniaxial crystal is circular: no sign.
   const MineralCrystallography& q = data_of("quartz");
-  const SectionOptics basal = section_optics(q.indicatrix_axes, n_of("quartz"), plane_normal(q.cell, {0, 0, 1}));
+  const SectionOptics basal =
+      section_optics(q.indicatrix_axes, n_of("quartz"), plane_normal(q.cell, {0, 0, 1}));
   EXPECT_TRUE(basal.circular);
 }
 

@@ -80,15 +80,16 @@ TEST(MineralLibrary, LookupIsCaseInsensitiveAndUnknownNamesAreInputErrors) {
 TEST(OpticAngle, MatchesTheTangentForm) {
   // Independent form of the optic-axis angle (Born & Wolf §15.3):
   // tan²Vz = (1/nα² − 1/nβ²) / (1/nβ² − 1/nγ²).
-  const double sets[][3] = {{1.50, 1.51, 1.60}, {1.52, 1.55, 1.60}, {1.560, 1.595, 1.600}, {1.654, 1.671, 1.690}};
+  const double sets[][3] = {
+      {1.50, 1.51, 1.60}, {1.52, 1.55, 1.60}, {1.560, 1.595, 1.600}, {1.654, 1.671, 1.690}};
   for (const auto& s : sets) {
     const double t2 = (1 / (s[0] * s[0]) - 1 / (s[1] * s[1])) / (1 / (s[1] * s[1]) - 1 / (s[2] * s[2]));
     // Both are closed forms in double precision: 1e-12 rad.
     EXPECT_NEAR(optic_angle_2v_rad(s[0], s[1], s[2]), 2 * std::atan(std::sqrt(t2)), 1e-12);
   }
-  EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.5, 1.6), 0.0, 1e-12);                // uniaxial positive
+  EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.5, 1.6), 0.0, 1e-12);  // uniaxial positive
   EXPECT_NEAR(optic_angle_2v_rad(1.5, 1.6, 1.6), kPi, 1e-12);  // uniaxial negative
-  EXPECT_EQ(optic_angle_2v_rad(1.5, 1.5, 1.5), 0.0);                          // isotropic, no NaN
+  EXPECT_EQ(optic_angle_2v_rad(1.5, 1.5, 1.5), 0.0);           // isotropic, no NaN
 }
 
 TEST(OpticAngle, BiaxialMineralsAgreeWithTheirPublished2V) {
@@ -119,7 +120,7 @@ TEST(Orientation, HelpersGiveRightHandedOrthonormalFrames) {
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(glm::dot(m[i], m[k]), i == k ? 1.0 : 0.0, 1e-14);
     EXPECT_NEAR(glm::dot(glm::cross(m[0], m[1]), m[2]), 1.0, 1e-14);
   }
-  EXPECT_NEAR(glm::dot(u[2], glm::normalize(glm::dvec3(1, 2, 3))), 1.0, 1e-14);  // Z = optic axis
+  EXPECT_NEAR(glm::dot(u[2], glm::normalize(glm::dvec3(1, 2, 3))), 1.0, 1e-14);      // Z = optic axis
   EXPECT_NEAR(glm::dot(b[2], glm::normalize(glm::dvec3(0.1, 0.2, 1))), 1.0, 1e-14);  // z first
   // A stage turn of 90° counter-clockwise takes lab x to lab y.
   const glm::dmat3 q = rotate_stage(glm::dmat3(1.0), kPi / 2);
@@ -163,18 +164,25 @@ std::string write_temp(const std::string& name, const std::string& text) {
 }  // namespace
 
 TEST(MineralFile, BadInputNamesFileKeyAndValue) {
-  struct Case { const char* text; const char* key; const char* value; };
+  struct Case {
+    const char* text;
+    const char* key;
+    const char* value;
+  };
   const Case cases[] = {
       {R"({"name":"x","symmetry":"uniaxial","indices":{"no":1.5,"ne":1.6}})", "source", ""},
-      {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":0.5,"ne":1.6}})", "indices.no", "0.5"},
-      {R"({"name":"x","symmetry":"trigonal","source":"s","indices":{}})", "symmetry", "trigonal"},  // strings shown unquoted, as in every file type
+      {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":0.5,"ne":1.6}})", "indices.no",
+       "0.5"},
+      {R"({"name":"x","symmetry":"trigonal","source":"s","indices":{}})", "symmetry",
+       "trigonal"},  // strings shown unquoted, as in every file type
       {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":{"model":"magic"},"ne":1.6}})",
        "indices.no.model", "magic"},
       {R"({"name":"x","symmetry":"biaxial","source":"s","indices":{"nalpha":1.6,"nbeta":1.5,"ngamma":1.7}})",
        "indices", ""},
       {R"({"name":"x","symmetry":"uniaxial","source":"s","indices":{"no":1.5,"ne":1.6},
            "absorption":{"reference_thickness_um":30,"wavelength_nm":[400,500],
-           "transmittance":{"o":[0.5,1.5],"e":[0.5,0.5]}}})", "absorption.transmittance.o", "[0.5,1.5]"},
+           "transmittance":{"o":[0.5,1.5],"e":[0.5,0.5]}}})",
+       "absorption.transmittance.o", "[0.5,1.5]"},
   };
   int i = 0;
   for (const Case& c : cases) {

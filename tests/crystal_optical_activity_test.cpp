@@ -62,7 +62,8 @@ TEST(OpticalActivity, CentreOfAThinSectionFigureIsNotBlack) {
     EXPECT_NEAR(Iw, std::pow(std::sin(q.rotatory_power_rad_per_um(wl) * 3000.0), 2), 1e-12) << wl;
   }
   EXPECT_GT(std::pow(std::sin(q.rotatory_power_rad_per_um(450.0) * 3000.0), 2) -
-                std::pow(std::sin(q.rotatory_power_rad_per_um(650.0) * 3000.0), 2), 0.1);
+                std::pow(std::sin(q.rotatory_power_rad_per_um(650.0) * 3000.0), 2),
+            0.1);
 }
 
 TEST(OpticalActivity, AwayFromTheAxisLinearBirefringenceDominates) {

@@ -68,7 +68,8 @@ TEST(UniaxialPlate, NormalIncidenceRetardationIsBirefringenceTimesThickness) {
       EXPECT_LE(m.n1, m.n2);
       // Between crossed polars at 45° to the axis the intensity is sin²(πΓ/λ) (no Fresnel here).
       const JonesMatrix J = plate_jones(p, {0, 0, 1}, 550.0);
-      EXPECT_NEAR(crossed_intensity(J, az + kPi / 4), std::pow(std::sin(kPi * m.retardation_nm / 550.0), 2), 1e-12);
+      EXPECT_NEAR(crossed_intensity(J, az + kPi / 4), std::pow(std::sin(kPi * m.retardation_nm / 550.0), 2),
+                  1e-12);
     }
   }
 }
@@ -183,13 +184,18 @@ TEST(BiaxialPlate, OpticAxesLieAtVFromZAndEmergeAtSinEEqualsNBetaSinV) {
   const PlateSpec p = plate_of(c, biaxial_orientation({1, 0, 0}, {0, 0, 1}), 30.0, true);
   const double V = 0.5 * optic_angle_2v_rad(na, nb, ng);
   for (double side : {1.0, -1.0}) {
-    auto gamma = [&](double q) { return plate_modes(p, dir_from_sin(q, side > 0 ? 0.0 : kPi), 550.0).retardation_nm; };
+    auto gamma = [&](double q) {
+      return plate_modes(p, dir_from_sin(q, side > 0 ? 0.0 : kPi), 550.0).retardation_nm;
+    };
     // Γ(q) is V-shaped around the optic axis: golden-section search on [0, 0.95].
     double lo = 0.0, hi = 0.95;
     const double phi = (std::sqrt(5.0) - 1) / 2;
     for (int it = 0; it < 200; ++it) {
       const double m1 = hi - phi * (hi - lo), m2 = lo + phi * (hi - lo);
-      if (gamma(m1) < gamma(m2)) hi = m2; else lo = m1;
+      if (gamma(m1) < gamma(m2))
+        hi = m2;
+      else
+        lo = m1;
     }
     const double q = 0.5 * (lo + hi);
     // sin E = nβ·sin V in air (Nesse 2012 ch. 10; Born & Wolf §15.3); the search resolves the
@@ -262,8 +268,8 @@ TEST(Stability, TinyBirefringenceThickPlatesAndGrazingRaysStayFinite) {
   const Crystal& calcite = find_mineral("calcite");
   const Crystal& biotite = find_mineral("biotite");
   const Crystal& quartz = find_mineral("quartz");
-  const glm::dmat3 orients[] = {glm::dmat3(1.0), uniaxial_orientation({1, 0, 0}), uniaxial_orientation({1, 2, 3}),
-                                biaxial_orientation({0, 1, 0}, {1, 0, 0.2})};
+  const glm::dmat3 orients[] = {glm::dmat3(1.0), uniaxial_orientation({1, 0, 0}),
+                                uniaxial_orientation({1, 2, 3}), biaxial_orientation({0, 1, 0}, {1, 0, 0.2})};
   int n = 0;
   for (const Crystal* c : {&tiny, &tinyb, &calcite, &biotite, &quartz}) {
     for (const glm::dmat3& R : orients) {
@@ -318,8 +324,8 @@ TEST(Stability, TinyBirefringenceThickPlatesAndGrazingRaysStayFinite) {
 TEST(Energy, NonAbsorbingPlateTransmitsAtMostTheIncidentPower) {
   for (const char* name : {"calcite", "quartz", "muscovite", "augite", "olivine"}) {
     const Crystal& c = find_mineral(name);
-    for (const glm::dmat3& R : {uniaxial_orientation({1, 0.3, 0.2}), biaxial_orientation({0, 1, 1}, {1, 0, 0.4}),
-                                glm::dmat3(1.0)}) {
+    for (const glm::dmat3& R : {uniaxial_orientation({1, 0.3, 0.2}),
+                                biaxial_orientation({0, 1, 1}, {1, 0, 0.4}), glm::dmat3(1.0)}) {
       const PlateSpec p = plate_of(c, R, 30.0, true);
       for (double s = 0; s < 1; s += 0.15) {
         for (double az = 0; az < 2 * kPi; az += 0.6) {
@@ -373,7 +379,8 @@ TEST(Energy, StronglyBirefringentBiaxialPlateStaysPassiveToGrazing) {
           for (const auto& [sv, n] : {std::pair{m.s1, m.n1}, std::pair{m.s2, m.n2}}) {
             glm::dvec3 u, v;
             transverse_basis(sv, u, v);
-            const double puu = glm::dot(u, P.eta * u), puv = glm::dot(u, P.eta * v), pvv = glm::dot(v, P.eta * v);
+            const double puu = glm::dot(u, P.eta * u), puv = glm::dot(u, P.eta * v),
+                         pvv = glm::dot(v, P.eta * v);
             const double mean = 0.5 * (puu + pvv), r = std::hypot(0.5 * (puu - pvv), puv);
             const double inv_n2 = 1.0 / (n * n);
             EXPECT_LT(std::min(std::abs(mean + r - inv_n2), std::abs(mean - r - inv_n2)), 1e-12 * inv_n2)

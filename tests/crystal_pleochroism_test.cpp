@@ -12,7 +12,8 @@ using namespace pmsim;
 namespace {
 
 // Plane-polarized light (polarizer E–W, analyzer out): transmitted intensity at normal incidence.
-double ppl_intensity(const Crystal& c, const glm::dmat3& orient, double stage_rad, double wl, double d = 30.0) {
+double ppl_intensity(const Crystal& c, const glm::dmat3& orient, double stage_rad, double wl,
+                     double d = 30.0) {
   PlateSpec p;
   p.crystal = &c;
   p.crystal_to_lab = rotate_stage(orient, stage_rad);
@@ -41,8 +42,9 @@ TEST(Pleochroism, BiotiteIsPaleAcrossAndDarkAlongTheCleavage) {
 TEST(Pleochroism, TransmittedSpectrumChangesWithStageRotation) {
   for (const char* name : {"biotite", "hornblende", "tourmaline"}) {
     const Crystal& c = find_mineral(name);
-    const glm::dmat3 R = c.symmetry() == CrystalSymmetry::Uniaxial ? uniaxial_orientation({1, 0, 0})
-                                                                   : biaxial_orientation({1, 0, 0}, {0, 1, 0});
+    const glm::dmat3 R = c.symmetry() == CrystalSymmetry::Uniaxial
+                             ? uniaxial_orientation({1, 0, 0})
+                             : biaxial_orientation({1, 0, 0}, {0, 1, 0});
     // Blue/red ratio of the transmitted light at stage 0° and 90°: a colour change shows as a
     // change of spectral shape, not only of brightness. The tables differ by > 10 % in shape.
     const double r0 = ppl_intensity(c, R, 0.0, 450.0) / ppl_intensity(c, R, 0.0, 650.0);

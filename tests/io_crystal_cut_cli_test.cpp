@@ -45,7 +45,7 @@ TEST(CrystalCutCli, BadCutsExitTwoNamingTheKey) {
   const std::string out = temp_dir() + "/cut.png";
   // North out of the plane: [010] is the normal of (010) in a monoclinic cell, 90° off.
   CliRun r = run("--set sample.mineral=augite --set 'sample.cut={\"plane\":\"(010)\",\"north\":\"[010]\"}'" +
-              kSmall + "--out " + out);
+                 kSmall + "--out " + out);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("sample.cut.north"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("makes 90° with the plane (010)"), std::string::npos) << r.err;
@@ -61,22 +61,25 @@ TEST(CrystalCutCli, BadCutsExitTwoNamingTheKey) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'sample.cut'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("(1x0)"), std::string::npos) << r.err;
-  r = run("--set 'sample.crystal={\"no\":1.6,\"ne\":1.5}' --set 'sample.cut={\"plane\":\"(010)\",\"north\":\"[001]\"}'" +
+  r =
+      run("--set 'sample.crystal={\"no\":1.6,\"ne\":1.5}' --set "
+          "'sample.cut={\"plane\":\"(010)\",\"north\":\"[001]\"}'" +
           kSmall + "--out " + out);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'sample.cut'"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   // The same from a scene file: the file is named too.
   const std::string scene = temp_dir() + "/cut_scene.json";
-  std::ofstream(scene) << R"J({"sample": {"mineral": "hornblende", "cut": {"plane": "(110)", "north": "[100]"}}})J";
+  std::ofstream(scene)
+      << R"J({"sample": {"mineral": "hornblende", "cut": {"plane": "(110)", "north": "[100]"}}})J";
   r = run(scene + kSmall + "--out " + out);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find(scene), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("sample.cut.north"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   // A good cut renders.
-  r = run("--set sample.mineral=augite --set 'sample.cut={\"plane\":\"(010)\",\"north\":\"[001]\"}'" + kSmall +
-          "--out " + out);
+  r = run("--set sample.mineral=augite --set 'sample.cut={\"plane\":\"(010)\",\"north\":\"[001]\"}'" +
+          kSmall + "--out " + out);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out));
 }

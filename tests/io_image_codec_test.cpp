@@ -30,8 +30,8 @@ struct ProcessResult {
 // Runs pmsim-render on an 8×8 image with `env` in front; stderr is kept.
 ProcessResult render(const std::string& env, const std::string& out) {
   const std::string err_file = temp_dir() + "/stderr.txt";
-  const std::string cmd = env + " " + kRender + " --set render.width=8 --set render.height=8 --out " + out +
-                          " 2>" + err_file;
+  const std::string cmd =
+      env + " " + kRender + " --set render.width=8 --set render.height=8 --out " + out + " 2>" + err_file;
   const int status = std::system(cmd.c_str());
   std::ifstream f(err_file);
   std::stringstream s;
@@ -47,7 +47,8 @@ TEST(ImageCodec, PngRenderDoesNotLoadOpenImageIOButExrDoes) {
   const ProcessResult png = render("LD_DEBUG=files", temp_dir() + "/a.png");
   ASSERT_EQ(png.exit_code, 0) << png.err;
   EXPECT_EQ(png.err.find("libOpenImageIO"), std::string::npos);
-  EXPECT_NE(png.err.find("libpng"), std::string::npos) << "LD_DEBUG output missing: the check above proves nothing";
+  EXPECT_NE(png.err.find("libpng"), std::string::npos)
+      << "LD_DEBUG output missing: the check above proves nothing";
   const ProcessResult exr = render("LD_DEBUG=files", temp_dir() + "/a.exr");
   ASSERT_EQ(exr.exit_code, 0) << exr.err;
   EXPECT_NE(exr.err.find("libpmsim_oiio"), std::string::npos);
@@ -61,7 +62,8 @@ TEST(ImageCodec, MissingModuleIsAnErrorNamingItAndLeavesNoFile) {
   EXPECT_NE(r.err.find("/nonexistent/libpmsim_oiio.so"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   for (const auto& e : fs::directory_iterator(temp_dir()))
-    EXPECT_EQ(e.path().filename().string().find(".b.tmp"), std::string::npos) << "temporary left: " << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".b.tmp"), std::string::npos)
+        << "temporary left: " << e.path();
   // A PNG needs no module at all.
   EXPECT_EQ(render("PMSIM_OIIO_PLUGIN=/nonexistent/libpmsim_oiio.so", temp_dir() + "/b.png").exit_code, 0);
 }
@@ -69,7 +71,8 @@ TEST(ImageCodec, MissingModuleIsAnErrorNamingItAndLeavesNoFile) {
 TEST(ImageCodec, PngWrittenByLibpngReadsBackWithItsSceneMetadata) {
   const std::string path = temp_dir() + "/meta.png";
   const std::vector<float> rgb = {0.0f, 0.5f, 1.0f, 0.2f, 0.2f, 0.2f};
-  const nlohmann::json meta = {{"sample", {{"mineral", "quartz"}, {"thickness_um", 30.0}}}, {"note", "µm, Δn"}};
+  const nlohmann::json meta = {{"sample", {{"mineral", "quartz"}, {"thickness_um", 30.0}}},
+                               {"note", "µm, Δn"}};
   pmsim::write_image(path, 2, 1, rgb, meta);
   const pmsim::LoadedImage img = pmsim::read_image(path);
   ASSERT_EQ(img.width, 2);

@@ -51,8 +51,8 @@ TEST(RenderCli, RendersASmallSceneWithStats) {
   ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " not built";
   const std::string out = temp_dir() + "/ok.exr", stats = temp_dir() + "/ok.json";
   EXPECT_EQ(run(std::string(PMSIM_SOURCE_DIR) +
-                "/assets/scenes/calcite_cono.json --set render.width=32 --set render.height=32 --out " +
-                out + " --stats " + stats),
+                "/assets/scenes/calcite_cono.json --set render.width=32 --set render.height=32 --out " + out +
+                " --stats " + stats),
             0);
   EXPECT_TRUE(fs::exists(out));
   std::ifstream f(stats);

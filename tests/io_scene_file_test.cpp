@@ -86,10 +86,10 @@ TEST(SceneFile, ConoAloneImpliesBertrandIn) {
 }
 
 TEST(SceneFile, VectorsAreNormalisedAndCrystalReplacesMineral) {
-  const Scene s = scene_from_json(
-      json::parse(R"({"sample": {"mineral": "calcite", "crystal": {"no": 1.6, "ne": 1.5},
+  const Scene s =
+      scene_from_json(json::parse(R"({"sample": {"mineral": "calcite", "crystal": {"no": 1.6, "ne": 1.5},
                                   "optic_axis": [0, 3, 4]}})"),
-      "x.json");
+                      "x.json");
   ASSERT_TRUE(s.sample.crystal.has_value());
   EXPECT_DOUBLE_EQ(s.sample.optic_axis[1], 0.6);
   EXPECT_DOUBLE_EQ(s.sample.optic_axis[2], 0.8);
@@ -112,8 +112,8 @@ TEST(SceneFile, BadValuesNameFileKeyAndValue) {
                      "render.single_wavelength_nm", "300");
   expect_input_error(load(R"({"sample": {"optic_axis": [0, 0, 0]}})"), "bad.json", "sample.optic_axis",
                      "[0,0,0]");
-  expect_input_error(load(R"({"sample": {"crystal": {"no": 1.0, "ne": 1.5}}})"), "bad.json",
-                     "sample.crystal", R"({"ne":1.5,"no":1.0})");
+  expect_input_error(load(R"({"sample": {"crystal": {"no": 1.0, "ne": 1.5}}})"), "bad.json", "sample.crystal",
+                     R"({"ne":1.5,"no":1.0})");
   expect_input_error(load(R"({"render": {"width": 20000}})"), "bad.json", "render.width", "20000");
   expect_input_error(load(R"({"sample": {"mineral": "unobtainium"}})"), "bad.json", "sample.mineral",
                      "unobtainium");
@@ -146,7 +146,8 @@ TEST(SceneFile, MissingFileAndBrokenJsonAreInputErrors) {
 }
 
 TEST(SceneFile, ShippedScenesLoadWithoutWarnings) {
-  for (const auto& e : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes")) {
     std::vector<std::string> warnings;
     EXPECT_NO_THROW(load_scene_file(e.path().string(), &warnings)) << e.path();
     EXPECT_TRUE(warnings.empty()) << e.path() << ": " << (warnings.empty() ? "" : warnings[0]);
@@ -160,6 +161,8 @@ TEST(SceneFile, FuzzFindingsAreInputErrors) {
   expect_input_error([&] { load_scene_file(path); }, path, "", "");
   // Parallel biaxial axes leave no frame (fuzz finding F7).
   expect_input_error(
-      [] { scene_from_json(json::parse(R"({"sample": {"x_axis": [0, 0, 1], "z_axis": [0, 0, 2]}})"), "p.json"); },
+      [] {
+        scene_from_json(json::parse(R"({"sample": {"x_axis": [0, 0, 1], "z_axis": [0, 0, 2]}})"), "p.json");
+      },
       "p.json", "sample.x_axis", "[0,0,1]");
 }

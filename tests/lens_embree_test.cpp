@@ -30,10 +30,12 @@ struct Scene {
     id_b = attach_lens(device, scene, b);
     // Plane z = 20 spanning |x|,|y| ≤ 50: two triangles.
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float* v = (float*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4);
+    float* v = (float*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                               3 * sizeof(float), 4);
     const float verts[12] = {-50, -50, 20, 50, -50, 20, 50, 50, 20, -50, 50, 20};
     std::copy(verts, verts + 12, v);
-    unsigned* idx = (unsigned*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), 2);
+    unsigned* idx = (unsigned*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                       3 * sizeof(unsigned), 2);
     const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
     std::copy(tris, tris + 6, idx);
     rtcCommitGeometry(g);
@@ -92,7 +94,7 @@ TEST(LensEmbreeScene, RaysFindTheRightLensOrThePlaneWithDoubleGeometryToFloatPre
     EXPECT_NEAR(rh.ray.tfar, h.t / glm::length(df), 1e-6 * h.t);
     const glm::dvec3 Ng{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
     EXPECT_NEAR(glm::length(Ng - h.normal), 0.0, 1e-6);  // normal rounded to float
-    EXPECT_LT(glm::dot(Ng, df), 0.0);                     // outward: faces the incoming ray
+    EXPECT_LT(glm::dot(Ng, df), 0.0);                    // outward: faces the incoming ray
     EXPECT_EQ(lens_surface_from_hit_u(rh.hit.u), h.surface);
   }
   EXPECT_GT(n_a, 100);

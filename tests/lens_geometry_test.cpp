@@ -149,7 +149,8 @@ TEST(LensIntersection, RayAlongTheAxisHitsBothVerticesAndNeverTheLedge) {
 
 TEST(LensAssets, ShippedLensFilesAreValidAndNameTheirSource) {
   int n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/lenses")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/lenses")) {
     if (e.path().extension() != ".json") continue;
     ++n;
     std::ifstream f(e.path());

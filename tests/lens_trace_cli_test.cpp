@@ -34,7 +34,8 @@ std::string slurp(const fs::path& p) {
 CliResult run(const std::string& args) {
   const fs::path dir = fs::temp_directory_path() / ("pmsim_trace_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const std::string cmd = "'" + kBin + "' " + args + " >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
+  const std::string cmd =
+      "'" + kBin + "' " + args + " >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
   fs::remove_all(dir);
@@ -52,8 +53,9 @@ const char* kRay = " --origin 1.5,0.25,-10 --dir 0.05,0,1 --pol 0,1,0 --waveleng
 
 TEST(PmsimTraceCli, OutputMatchesTheLibraryToTheLastBitAndBalancesEnergy) {
   ASSERT_TRUE(fs::exists(kBin)) << "build the pmsim-trace target first: " << kBin;
-  const CliResult r = run("--lens '" + kLens + "'" + kRay +
-                    " --intensity 2 --source 7 --delta-rad 0.5 --optical-path-mm 3 --depth 4 --tir split");
+  const CliResult r =
+      run("--lens '" + kLens + "'" + kRay +
+          " --intensity 2 --source 7 --delta-rad 0.5 --optical-path-mm 3 --depth 4 --tir split");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
 
@@ -100,7 +102,8 @@ TEST(PmsimTraceCli, OutputMatchesTheLibraryToTheLastBitAndBalancesEnergy) {
 
 TEST(PmsimTraceCli, MissingTheLensGivesOneMissEvent) {
   ASSERT_TRUE(fs::exists(kBin));
-  const CliResult r = run("--lens '" + kLens + "' --origin 30,0,-10 --dir 0,0,1 --pol 1,0,0 --wavelength-nm 550");
+  const CliResult r =
+      run("--lens '" + kLens + "' --origin 30,0,-10 --dir 0,0,1 --pol 1,0,0 --wavelength-nm 550");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["rays"].empty());
@@ -115,11 +118,14 @@ TEST(PmsimTraceCli, BadInputNamesTheKeyExitsTwoAndWritesNothing) {
     std::string args, key;
   };
   const std::string good_lens = "--lens '" + kLens + "'";
-  const fs::path bad_radius = write_lens(R"({"glass":"N-BK7","radius_mm":4.25,"front":{"radius_mm":3},"ledge_mm":0.3})");
+  const fs::path bad_radius =
+      write_lens(R"({"glass":"N-BK7","radius_mm":4.25,"front":{"radius_mm":3},"ledge_mm":0.3})");
   const fs::path bad_glass = fs::path(bad_radius).replace_extension(".g.json");
-  std::ofstream(bad_glass) << R"({"glass":"unobtainium","radius_mm":4.25,"front":{"radius_mm":8},"ledge_mm":0.3})";
+  std::ofstream(bad_glass)
+      << R"({"glass":"unobtainium","radius_mm":4.25,"front":{"radius_mm":8},"ledge_mm":0.3})";
   const fs::path disagree = fs::path(bad_radius).replace_extension(".t.json");
-  std::ofstream(disagree) << R"({"glass":"N-BK7","radius_mm":4.25,"front":{"radius_mm":8},"ledge_mm":0.3,"thickness_mm":1})";
+  std::ofstream(disagree)
+      << R"({"glass":"N-BK7","radius_mm":4.25,"front":{"radius_mm":8},"ledge_mm":0.3,"thickness_mm":1})";
   const Case cases[] = {
       {good_lens + " --origin 0,0,-10 --dir 0,0,1 --pol 1,0,0.01 --wavelength-nm 550", "--pol"},
       {good_lens + " --origin 0,0,-10 --dir 0,0,0 --pol 1,0,0 --wavelength-nm 550", "--dir"},

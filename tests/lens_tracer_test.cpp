@@ -250,7 +250,8 @@ TEST(LensTir, SplitModeMemoryIsBoundedByTheRayCap) {
   int limited = 0;
   for (int k = 0; k < 50; ++k) {
     LensBundle b;
-    const PolarizedRay in = ray(0.5 * glm::dvec3(n(rng), n(rng), 0.2 * n(rng)), {n(rng), n(rng), n(rng)}, {n(rng), n(rng), n(rng)});
+    const PolarizedRay in = ray(0.5 * glm::dvec3(n(rng), n(rng), 0.2 * n(rng)), {n(rng), n(rng), n(rng)},
+                                {n(rng), n(rng), n(rng)});
     trace_lens(g, m, in, opt, b);
     limited += b.ray_limit_reached;
     ASSERT_LE(b.rays.size(), 2u * 2000 + 2);

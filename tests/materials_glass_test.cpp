@@ -12,7 +12,10 @@ namespace {
 
 constexpr double kD = 587.5618, kF = 486.1327, kC = 656.2725, kE = 546.0740;  // Fraunhofer lines
 
-struct Catalogue { const char* name; double nd, vd; };
+struct Catalogue {
+  const char* name;
+  double nd, vd;
+};
 // SCHOTT optical glass data sheets (2015/2017 catalogue): n_d (5 decimals) and v_d (2 decimals).
 constexpr Catalogue kGlasses[] = {
     {"N-BK7", 1.51680, 64.17}, {"N-SF11", 1.78472, 25.68}, {"N-SF6", 1.80518, 25.36},
@@ -37,9 +40,14 @@ TEST(SchottGlass, AbbeNumberMatchesCatalogue) {
 
 TEST(SchottGlass, FraunhoferLineIndicesMatchCatalogue) {
   // Data-sheet n_F, n_C (and n_e for N-BK7), 5 decimals: tolerance 1e-5 as for n_d.
-  struct Lines { const char* name; double nF, nC; };
-  constexpr Lines lines[] = {{"N-BK7", 1.52238, 1.51432}, {"N-SF6", 1.82783, 1.79608},
-                             {"F2", 1.63208, 1.61503},    {"N-SK16", 1.62756, 1.61727}};
+  struct Lines {
+    const char* name;
+    double nF, nC;
+  };
+  constexpr Lines lines[] = {{"N-BK7", 1.52238, 1.51432},
+                             {"N-SF6", 1.82783, 1.79608},
+                             {"F2", 1.63208, 1.61503},
+                             {"N-SK16", 1.62756, 1.61727}};
   for (const auto& l : lines) {
     const Medium& m = find_medium(l.name);
     EXPECT_NEAR(m.n(kF), l.nF, 1e-5) << l.name;
@@ -76,10 +84,12 @@ TEST(SchottGlass, SellmeierFormulaByHand) {
 TEST(SchottGlass, AttenuationReproducesCatalogueInternalTransmittance) {
   // Beer–Lambert: τ_i(d) = e^(−μ d). At a catalogue wavelength μ is the tabulated one, so
   // 25 mm of glass transmits the catalogue τ_i to rounding (1e-12).
-  struct Tau { const char* name; double nm, tau25; };
-  constexpr Tau taus[] = {{"N-BK7", 400.0, 0.992}, {"N-BK7", 546.0, 0.996},
-                          {"N-SF11", 400.0, 0.600}, {"N-SF11", 380.0, 0.120},
-                          {"N-SF6", 420.0, 0.810},  {"F2", 380.0, 0.963},
+  struct Tau {
+    const char* name;
+    double nm, tau25;
+  };
+  constexpr Tau taus[] = {{"N-BK7", 400.0, 0.992},  {"N-BK7", 546.0, 0.996}, {"N-SF11", 400.0, 0.600},
+                          {"N-SF11", 380.0, 0.120}, {"N-SF6", 420.0, 0.810}, {"F2", 380.0, 0.963},
                           {"N-SK16", 500.0, 0.991}};
   for (const auto& t : taus) {
     const double mu = find_medium(t.name).attenuation_per_mm(t.nm);

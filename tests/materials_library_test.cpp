@@ -67,9 +67,7 @@ TEST(OtherMedia, ImmersionOilMeetsIso8036) {
   EXPECT_GT(oil.n(400.0), oil.n(700.0));
 }
 
-TEST(OtherMedia, MountingMediumIsCanadaBalsamLike) {
-  EXPECT_EQ(find_medium("mounting").n(589.0), 1.54);
-}
+TEST(OtherMedia, MountingMediumIsCanadaBalsamLike) { EXPECT_EQ(find_medium("mounting").n(589.0), 1.54); }
 
 TEST(MediumFactories, BeerLambertWithConstantAttenuation) {
   // I = I0·e^(−μx): 2 mm of μ = 0.5/mm transmits e^(−1).
@@ -122,7 +120,9 @@ TEST_F(MaterialFile, ValidFileLoads) {
 }
 
 TEST_F(MaterialFile, BadInputNamesKeyAndValue) {
-  struct Case { std::string text, key, value_part; };
+  struct Case {
+    std::string text, key, value_part;
+  };
   const std::string base = kGood;
   auto replace = [&](const std::string& from, const std::string& to) {
     std::string s = base;
@@ -143,7 +143,8 @@ TEST_F(MaterialFile, BadInputNamesKeyAndValue) {
       {replace("[0.9, 0.99]", "[0.9, 1.5]"), "internal_transmittance.tau_i[1]", "1.5"},
       {replace("[0.9, 0.99]", "[0.0, 0.99]"), "internal_transmittance.tau_i[0]", "0.0"},
       {replace("[0.9, 0.99]", "[0.9]"), "internal_transmittance.tau_i", "[0.9]"},
-      {replace(R"("thickness_mm": 10)", R"("thickness_mm": -1)"), "internal_transmittance.thickness_mm", "-1"},
+      {replace(R"("thickness_mm": 10)", R"("thickness_mm": -1)"), "internal_transmittance.thickness_mm",
+       "-1"},
       {replace("[400, 700]", "[700, 400]"), "internal_transmittance.wavelength_nm[1]", "400"},
       {replace(R"({"nd": 1.5168})", R"({"nd": 1.6})"), "catalogue.nd", "1.6"},
       {replace(R"("name": "test")", R"("name": "test", "sauce": 1)"), "sauce", "1"},

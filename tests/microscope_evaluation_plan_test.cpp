@@ -136,11 +136,14 @@ TEST(ModelPolicy, ExactForSingleWavelengthAndForStrategyExact) {
     return 0.0;
   };
   Scene s = quartz_plate(8);
-  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model, PlateModel::Modal);
+  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model,
+            PlateModel::Modal);
   s.render.strategy = RenderStrategy::Exact;
-  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model, PlateModel::Exact);
+  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model,
+            PlateModel::Exact);
   s.render.strategy = RenderStrategy::Modal;
-  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model, PlateModel::Modal);
+  EXPECT_EQ(choose_model_policy(s, optical_domains(s).domains, no_lens_measurement).plate_model,
+            PlateModel::Modal);
   s.render.strategy = RenderStrategy::Auto;
   s.render.single_wavelength_nm = 589.0;
   const ModelPolicy mono = choose_model_policy(s, optical_domains(s).domains, no_lens_measurement);
@@ -181,7 +184,8 @@ TEST(RadialModalTable, AgreesWithDirectFits) {
       direct.fit(anchors, k);
       const ModalFit interpolated = table.at(k);
       for (int a = 0; a < 3; ++a) {
-        max_dgamma = std::max(max_dgamma, std::fabs(direct.gamma_at_anchor(a) - interpolated.gamma_at_anchor(a)));
+        max_dgamma =
+            std::max(max_dgamma, std::fabs(direct.gamma_at_anchor(a) - interpolated.gamma_at_anchor(a)));
         // Mode directions agree up to sign (a mode is defined up to sign).
         EXPECT_NEAR(std::fabs(glm::dot(direct.e1_at_anchor(a), interpolated.e1_at_anchor(a))), 1.0, 1e-6);
       }

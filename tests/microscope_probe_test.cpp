@@ -16,7 +16,7 @@ TEST(PixelProbe, PlateAt45ShowsItsRetardationAndSinSquaredSpectrum) {
   Scene s;
   s.sample.crystal = CrystalIndices{true, 1.540, 1.550};  // Δn = 0.010, non-dispersive
   s.sample.optic_axis = {std::sqrt(0.5), std::sqrt(0.5), 0.0};
-  s.sample.thickness_um = 55.0;                            // Γ = 550 nm
+  s.sample.thickness_um = 55.0;  // Γ = 550 nm
   const PixelProbe p = probe_pixel(s, 0.3, 0.7);
   ASSERT_TRUE(p.lit);
   ASSERT_EQ(p.wavelength_nm.size(), 81u);

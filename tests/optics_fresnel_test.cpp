@@ -104,7 +104,7 @@ TEST(FresnelTir, ReflectionIsTotalWithThePapersPhases) {
     EXPECT_NEAR(std::abs(f.r_p), 1.0, 1e-15);
     EXPECT_EQ(f.T_s(), 0.0);
     const double q = std::sqrt(std::sin(a) * std::sin(a) - eta * eta);
-    const double d_perp = 2 * std::atan(q / std::cos(a));              // paper δ⊥
+    const double d_perp = 2 * std::atan(q / std::cos(a));                            // paper δ⊥
     const double d_par = 2 * std::atan(q / (eta * eta * std::cos(a))) - pmsim::kPi;  // paper δ∥
     // r = e^(−iδ); compare the complex numbers (phase wrap-free), 1e-14 for trig rounding.
     EXPECT_NEAR(std::abs(f.r_s - std::polar(1.0, -d_perp)), 0.0, 1e-14) << deg;

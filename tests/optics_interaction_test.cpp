@@ -114,7 +114,8 @@ TEST(InterfaceTir, SplitsIntoPerpendicularAndParallelRaysWithPaperPhases) {
   EXPECT_NEAR(res.reflected[1].intensity, 1.4, 1e-15);
   const double q = std::sqrt(std::sin(a) * std::sin(a) - eta * eta);
   EXPECT_NEAR(res.reflected[0].delta_rad, 0.25 + 2 * std::atan(q / std::cos(a)), 1e-14);
-  EXPECT_NEAR(res.reflected[1].delta_rad, 0.25 + 2 * std::atan(q / (eta * eta * std::cos(a))) - pmsim::kPi, 1e-14);
+  EXPECT_NEAR(res.reflected[1].delta_rad, 0.25 + 2 * std::atan(q / (eta * eta * std::cos(a))) - pmsim::kPi,
+              1e-14);
   EXPECT_NEAR(glm::length(glm::cross(res.reflected[0].pol, s_dir)), 0.0, 1e-15);  // E⊥ stays ⟂
   EXPECT_NEAR(glm::dot(res.reflected[1].pol, res.reflected[1].dir), 0.0, 1e-15);
 }

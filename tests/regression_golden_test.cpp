@@ -65,8 +65,8 @@ std::string render(const GoldenCase& c, const fs::path& dir) {
   }
   if (c.tool == "vignetting") {
     const fs::path out_dir = dir / c.name;
-    const std::string cmd = kBinary + "/app/pmsim-experiments --quick --out-dir " + quoted(out_dir.string()) +
-                            " vignetting";
+    const std::string cmd =
+        kBinary + "/app/pmsim-experiments --quick --out-dir " + quoted(out_dir.string()) + " vignetting";
     return run(cmd) == 0 ? (out_dir / "vignetting_zones.png").string() : "";
   }
   return "";
@@ -76,7 +76,8 @@ class GoldenImage : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(GoldenImage, RenderMatchesGolden) {
   const GoldenCase& c = GetParam();
-  const fs::path dir = fs::temp_directory_path() / ("pmsim_golden_" + std::to_string(::getpid()) + "_" + c.name);
+  const fs::path dir =
+      fs::temp_directory_path() / ("pmsim_golden_" + std::to_string(::getpid()) + "_" + c.name);
   fs::create_directories(dir);
   const std::string path = render(c, dir);
   ASSERT_FALSE(path.empty()) << c.name << ": the " << c.tool << " tool failed";
@@ -118,7 +119,8 @@ TEST(GoldenManifest, CoversEverySceneFile) {
     for (const auto& e : fs::directory_iterator(kSource + "/assets/" + sub))
       if (e.path().extension() == ".json") {
         const std::string rel = std::string(sub) + "/" + e.path().filename().string();
-        EXPECT_NE(std::find(listed.begin(), listed.end(), rel), listed.end()) << rel << " has no golden image";
+        EXPECT_NE(std::find(listed.begin(), listed.end(), rel), listed.end())
+            << rel << " has no golden image";
       }
 }
 

@@ -67,7 +67,8 @@ TEST_F(CliHelp, HelpPrintsEveryOptionAndExitsZero) {
     EXPECT_EQ(help.exit_code, 0) << help.err;
     EXPECT_EQ(help.err, "");
     EXPECT_NE(help.out.find("Usage: " + p.name), std::string::npos) << help.out;
-    for (const std::string& o : p.options) EXPECT_NE(help.out.find(o), std::string::npos) << o << " missing:\n" << help.out;
+    for (const std::string& o : p.options)
+      EXPECT_NE(help.out.find(o), std::string::npos) << o << " missing:\n" << help.out;
     const CommandResult h = run_command({kApp + p.name, "-h"}, dir_);
     EXPECT_EQ(h.exit_code, 0) << h.err;
     EXPECT_EQ(h.out, help.out);
@@ -91,7 +92,8 @@ TEST_F(CliHelp, ValueErrorsFoundAfterParsingHaveTheSameStyle) {
     expect_usage_error(run_command({kApp + "pmsim", "--headless"}, dir_), "pmsim", "--screenshot");
     expect_usage_error(run_command({kApp + "pmsim", "--size", "640"}, dir_), "pmsim", "--size 640");
   }
-  expect_usage_error(run_command({kApp + "pmsim-render", "--out", dir_ / "x.bmp"}, dir_), "pmsim-render", "x.bmp");
+  expect_usage_error(run_command({kApp + "pmsim-render", "--out", dir_ / "x.bmp"}, dir_), "pmsim-render",
+                     "x.bmp");
   expect_usage_error(run_command({kApp + "pmsim-render"}, dir_), "pmsim-render", "--out");
   // Unexpected arguments in command-line order, and before a missing required option.
   expect_usage_error(
@@ -99,11 +101,13 @@ TEST_F(CliHelp, ValueErrorsFoundAfterParsingHaveTheSameStyle) {
       "pmsim-render", "not expected: b.json c.json");
   expect_usage_error(run_command({kApp + "pmsim-trace", "--lense", "a.json"}, dir_), "pmsim-trace",
                      "not expected: --lense a.json");
-  expect_usage_error(run_command({kApp + "pmsim-trace", "--origin", "0,0,-10"}, dir_), "pmsim-trace", "--lens");
+  expect_usage_error(run_command({kApp + "pmsim-trace", "--origin", "0,0,-10"}, dir_), "pmsim-trace",
+                     "--lens");
   expect_usage_error(run_command({kApp + "pmsim-trace", "--lens", "a.json", "--lens", "b.json"}, dir_),
                      "pmsim-trace", "--lens");
   expect_usage_error(run_command({kApp + "pmsim-bench", "--size", "banana"}, dir_), "pmsim-bench", "banana");
-  expect_usage_error(run_command({kApp + "pmsim-bench", "--threads", "-1"}, dir_), "pmsim-bench", "--threads");
+  expect_usage_error(run_command({kApp + "pmsim-bench", "--threads", "-1"}, dir_), "pmsim-bench",
+                     "--threads");
   expect_usage_error(run_command({kApp + "pmsim-experiments"}, dir_), "pmsim-experiments", "subcommand");
 }
 
@@ -112,11 +116,11 @@ TEST_F(CliHelp, RepeatedSetKeepsItsOrderAndAnOptionGivenTwiceKeepsTheLast) {
   // The scene file may stand between the --set options; the later stage_deg wins, as with the
   // hand-written parser; so does the later --out.
   const std::string scene = std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/quartz_section_ortho.json";
-  const CommandResult r = run_command(
-      {kApp + "pmsim-render", "--set", "stage_deg=10", scene, "--set=stage_deg=20", "--set", "render.width=8",
-       "--set", "render.height=8", "--set", "render.spp=1", "--set", "render.wavelengths=4", "--out",
-       dir_ / "first.exr", "-o", dir_ / "out.exr"},
-      dir_);
+  const CommandResult r =
+      run_command({kApp + "pmsim-render", "--set", "stage_deg=10", scene, "--set=stage_deg=20", "--set",
+                   "render.width=8", "--set", "render.height=8", "--set", "render.spp=1", "--set",
+                   "render.wavelengths=4", "--out", dir_ / "first.exr", "-o", dir_ / "out.exr"},
+                  dir_);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "first.exr"));
   const LoadedImage img = read_image(dir_ / "out.exr");

@@ -49,8 +49,10 @@ class TraceCli : public ::testing::Test {
       const std::string& v = change.second;
       auto it = std::find_if(a.begin(), a.end(), [&](const auto& p) { return p.first == k; });
       if (it != a.end()) {
-        if (v == "<drop>") a.erase(it);
-        else it->second = v;
+        if (v == "<drop>")
+          a.erase(it);
+        else
+          it->second = v;
       } else {
         a.push_back({k, v});
       }
@@ -94,8 +96,8 @@ TEST_F(TraceCli, NonUnitVectorsAreNormalised) {
 TEST_F(TraceCli, BadVectorsAndNumbersExitTwoNamingTheOption) {
   expect_bad({{"--dir", "0,0,0"}}, "--dir", "0,0,0");
   expect_bad({{"--pol", "0,0,0"}}, "--pol", "0,0,0");
-  expect_bad({{"--pol", "0,0,1"}}, "--pol", "0,0,1");          // along dir
-  expect_bad({{"--pol", "1,0,0.1"}}, "--pol", "1,0,0.1");      // not perpendicular
+  expect_bad({{"--pol", "0,0,1"}}, "--pol", "0,0,1");      // along dir
+  expect_bad({{"--pol", "1,0,0.1"}}, "--pol", "1,0,0.1");  // not perpendicular
   expect_bad({{"--dir", "0,0"}}, "--dir", "0,0");
   expect_bad({{"--origin", "nan,0,0"}}, "--origin", "nan");
   expect_bad({{"--origin", "0,inf,0"}}, "--origin", "inf");
@@ -127,9 +129,11 @@ TEST_F(TraceCli, BadLensFilesExitTwoNamingFileKeyAndValue) {
   expect_bad({}, "unobtainium", "glass", glass);
   const std::string trunc = dir_.file("trunc.json", R"({"glass":"N-BK7","radius_mm":2,"led)");
   expect_bad({}, "trunc.json", "", trunc);
-  const std::string latin1 = dir_.file("latin1.json", "{\"glass\":\"N-BK7\xe4\",\"radius_mm\":2,\"ledge_mm\":1}");
+  const std::string latin1 =
+      dir_.file("latin1.json", "{\"glass\":\"N-BK7\xe4\",\"radius_mm\":2,\"ledge_mm\":1}");
   expect_bad({}, "latin1.json", "", latin1);
-  const std::string typo = dir_.file("typo.json", R"({"glass":"N-BK7","radius_mm":2,"ledge_mm":1,"centre":[0,0,0]})");
+  const std::string typo =
+      dir_.file("typo.json", R"({"glass":"N-BK7","radius_mm":2,"ledge_mm":1,"centre":[0,0,0]})");
   expect_bad({}, "centre", "", typo);
 }
 
@@ -225,8 +229,8 @@ TEST_F(RenderCli, BadSetValuesExitTwoNamingKeyAndValue) {
 TEST_F(RenderCli, ParallelBiaxialAxesExitTwoInsteadOfAborting) {
   // x_axis ∥ z_axis passed validation; biaxial_orientation then threw std::invalid_argument,
   // which nothing caught: pmsim-render aborted (exit 134). Finding F7.
-  const std::string par = dir_.file("par.json",
-      R"({"sample":{"type":"plate","mineral":"muscovite","x_axis":[0,0,1],"z_axis":[0,0,2]}})");
+  const std::string par = dir_.file(
+      "par.json", R"({"sample":{"type":"plate","mineral":"muscovite","x_axis":[0,0,1],"z_axis":[0,0,2]}})");
   expect_bad({par}, {"par.json", "sample.x_axis|sample.z_axis"});
   fs::remove(par);
 }
@@ -249,8 +253,8 @@ TEST_F(RenderCli, AFileAndSetObeyTheSameRules) {
   // rendered from a file although the same values are refused on the command line.
   const std::string str = dir_.file("str.json", R"({"sample":"quartz"})");
   expect_bad({str}, {"str.json", "sample", "quartz"});
-  const std::string oblique = dir_.file("oblique.json",
-      R"({"sample":{"mineral":"muscovite","x_axis":[1,0,0.5],"z_axis":[0,0,1]}})");
+  const std::string oblique =
+      dir_.file("oblique.json", R"({"sample":{"mineral":"muscovite","x_axis":[1,0,0.5],"z_axis":[0,0,1]}})");
   expect_bad({oblique}, {"oblique.json", "sample.x_axis", "[1,0,0.5]"});
   expect_bad({"--set", "sample.mineral=muscovite", "--set", "sample.x_axis=[1,0,0.5]"},
              {"command line", "sample.x_axis", "[1,0,0.5]"});

@@ -48,7 +48,7 @@ TEST(MaterialFileInput, BadIndicesAndRangesNameKeyAndValue) {
     base[k] = v;
     return base.dump();
   };
-  expect_rejected(d, with(c, "n", 1.0), kMaterial, "n", "1");       // n ≤ 1 for a solid
+  expect_rejected(d, with(c, "n", 1.0), kMaterial, "n", "1");  // n ≤ 1 for a solid
   expect_rejected(d, with(c, "n", 0.5), kMaterial, "n", "0.5");
   expect_rejected(d, with(c, "n", 1e6), kMaterial, "n", "1000000");  // absurd
   expect_rejected(d, with(c, "n", "1.5"), kMaterial, "n", "1.5");    // wrong type
@@ -79,8 +79,7 @@ TEST(MaterialFileInput, BrokenFilesNameTheFile) {
   ScratchDir d;
   const std::string text = asset("materials/N-BK7.json").dump(2);
   for (const std::string& bytes : {text.substr(0, text.size() / 3), std::string(""),
-                                   std::string("{\"name\":\"N-BK\xff\"}"),
-                                   std::string("{\"n\": 1e400}")}) {
+                                   std::string("{\"name\":\"N-BK\xff\"}"), std::string("{\"n\": 1e400}")}) {
     const std::string path = d.file("m.json", bytes);
     auto e = input_error_of([&] { load_medium_file(path); });
     if (e) {
@@ -153,11 +152,13 @@ TEST(MineralFileInput, BrokenFilesNameTheFile) {
 }
 
 TEST(MineralFileInput, EveryAssetMineralLoads) {
-  for (const auto& e : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/minerals")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/minerals")) {
     SCOPED_TRACE(e.path().string());
     EXPECT_NO_THROW(load_mineral_file(e.path().string()));
   }
-  for (const auto& e : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/materials")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/materials")) {
     SCOPED_TRACE(e.path().string());
     EXPECT_NO_THROW(load_medium_file(e.path().string()));
   }

@@ -55,13 +55,23 @@ std::vector<float> gradient(int w, int h) {
 }
 
 // All the write paths, each writing `path`.
-std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writers(size_t text_bytes, int image_side) {
+std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writers(size_t text_bytes,
+                                                                                     int image_side) {
   return {
       {"text", [=](const std::string& p) { write_text_atomically(p, std::string(text_bytes, 'x')); }},
       {"scene", [](const std::string& p) { save_scene_file(Scene{}, p); }},
-      {"png", [=](const std::string& p) { write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{})); }},
-      {"exr", [=](const std::string& p) { write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{})); }},
-      {"tif", [=](const std::string& p) { write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{})); }},
+      {"png",
+       [=](const std::string& p) {
+         write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{}));
+       }},
+      {"exr",
+       [=](const std::string& p) {
+         write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{}));
+       }},
+      {"tif",
+       [=](const std::string& p) {
+         write_image(p, image_side, image_side, gradient(image_side, image_side), scene_to_json(Scene{}));
+       }},
   };
 }
 std::string ext_for(const std::string& kind) { return kind == "text" || kind == "scene" ? "json" : kind; }
@@ -172,7 +182,8 @@ void FullDisk::check_write_fails_cleanly(const std::string& kind) {
   unfill();
   EXPECT_TRUE(read_file(target) == "the user's previous file")
       << "the old file was replaced by " << fs::file_size(target) << " bytes";
-  EXPECT_EQ(listing(dir_), std::vector<std::string>{"saved." + ext_for(kind)}) << "a temporary was left behind";
+  EXPECT_EQ(listing(dir_), std::vector<std::string>{"saved." + ext_for(kind)})
+      << "a temporary was left behind";
 }
 
 TEST_F(FullDisk, ATextWriteFailsAndKeepsTheOldFile) { check_write_fails_cleanly("text"); }

@@ -165,8 +165,8 @@ void restart_storm(int restarts, bool report_memory) {
   const long rss_end = status_kib("VmRSS");
   if (report_memory) {
     std::printf("restarts %d, snapshots %ld, rejected %d\n", restarts, snapshots.load(), rejected);
-    std::printf("RSS start %ld KiB, after warm-up %ld KiB, end %ld KiB, peak (VmHWM) %ld KiB\n",
-                rss_start, rss_warm, rss_end, status_kib("VmHWM"));
+    std::printf("RSS start %ld KiB, after warm-up %ld KiB, end %ld KiB, peak (VmHWM) %ld KiB\n", rss_start,
+                rss_warm, rss_end, status_kib("VmHWM"));
   }
   // Flat memory: after warm-up (caches and TBB pools filled) a restart must not keep anything.
   // 64 MiB of slack is far below what 10⁵ leaked images (≥ 1.5 KiB each) would need.

@@ -24,9 +24,13 @@ Scene load(const ScratchDir& d, const std::string& text, std::vector<std::string
 
 TEST(SceneFileInput, OutOfRangeValuesNameTheFileKeyAndValue) {
   ScratchDir d;
-  struct Case { const char* json; const char* key; const char* value; };
+  struct Case {
+    const char* json;
+    const char* key;
+    const char* value;
+  };
   const Case cases[] = {
-      {R"({"sample":{"crystal":{"no":1.0,"ne":1.5}}})", "sample.crystal", "1"},     // n ≤ 1
+      {R"({"sample":{"crystal":{"no":1.0,"ne":1.5}}})", "sample.crystal", "1"},  // n ≤ 1
       {R"({"sample":{"crystal":{"no":0.5,"ne":1.5}}})", "sample.crystal", "0.5"},
       {R"({"sample":{"crystal":{"no":1.5,"ne":1e6}}})", "sample.crystal", "1000000"},  // absurd n
       {R"({"sample":{"crystal":{"nalpha":1.7,"nbeta":1.6,"ngamma":1.5}}})", "sample.crystal", "1.7"},
@@ -115,7 +119,8 @@ TEST(SceneFileInput, NumbersBeyondDoubleRangeAreInputErrors) {
 TEST(SceneFileInput, UnknownKeysAreWarningsNamingTheKey) {
   ScratchDir d;
   std::vector<std::string> warnings;
-  const Scene s = load(d, R"({"stgae_deg": 45, "sample": {"thicknes_um": 3, "thickness_um": 20}})", &warnings);
+  const Scene s =
+      load(d, R"({"stgae_deg": 45, "sample": {"thicknes_um": 3, "thickness_um": 20}})", &warnings);
   ASSERT_EQ(warnings.size(), 2u);
   std::string all = warnings[0] + "\n" + warnings[1];
   EXPECT_NE(all.find("'stgae_deg'"), std::string::npos) << all;
@@ -126,12 +131,15 @@ TEST(SceneFileInput, UnknownKeysAreWarningsNamingTheKey) {
 
 TEST(SceneFileInput, BrokenFilesAreInputErrorsNamingTheFile) {
   ScratchDir d;
-  const std::string asset = reliability::read_file(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/quartz_wedge.json");
+  const std::string asset =
+      reliability::read_file(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/quartz_wedge.json");
   ASSERT_GT(asset.size(), 20u);
   const std::vector<std::pair<const char*, std::string>> files = {
       {"truncated", asset.substr(0, asset.size() / 2)},
       {"empty", ""},
-      {"non-UTF-8 string", "{\"sample\":{\"mineral\":\"qu\xff\xfe" "rtz\"}}"},
+      {"non-UTF-8 string",
+       "{\"sample\":{\"mineral\":\"qu\xff\xfe"
+       "rtz\"}}"},
       {"Latin-1 byte in a key", "{\"st\xe4ge_deg\": 4}"},
       {"binary", std::string("\x00\x01\x02\x89PNG\r\n", 9)},
       {"NaN literal", R"({"stage_deg": NaN})"},
@@ -162,7 +170,8 @@ TEST(SceneFileInput, AFolderGivenAsTheSceneFileIsAnInputError) {
 }
 
 TEST(SceneFileInput, EveryAssetSceneLoadsWithoutWarnings) {
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes")) {
     SCOPED_TRACE(entry.path().string());
     std::vector<std::string> warnings;
     EXPECT_NO_THROW(load_scene_file(entry.path().string(), &warnings));
@@ -171,7 +180,11 @@ TEST(SceneFileInput, EveryAssetSceneLoadsWithoutWarnings) {
 }
 
 TEST(SetOption, BadValuesNameKeyAndValueAndKeepTheLastGoodScene) {
-  struct Case { const char* assignment; const char* key; const char* value; };
+  struct Case {
+    const char* assignment;
+    const char* key;
+    const char* value;
+  };
   const Case cases[] = {
       {"objective.na=1", "objective.na", "1"},
       {"objective.na=1.3", "objective.na", "1.3"},
@@ -268,7 +281,10 @@ TEST(SetOption, NonUtf8TextIsRefused) {
   // Found by the scene_setting fuzzer: a string key took bytes that are not UTF-8; saving the
   // scene (or writing it into image metadata) then threw a JSON type_error. Finding F10.
   Scene s;
-  EXPECT_INPUT_ERROR(apply_setting(s, "sample.section=\xff\xfe" "basalt"), "sample.section", "basalt");
+  EXPECT_INPUT_ERROR(apply_setting(s,
+                                   "sample.section=\xff\xfe"
+                                   "basalt"),
+                     "sample.section", "basalt");
   const nlohmann::json before = scene_to_json(s);
   EXPECT_NO_THROW(before.dump());
 }
@@ -276,10 +292,10 @@ TEST(SetOption, NonUtf8TextIsRefused) {
 TEST(SetOption, ValidValuesAtTheEdgesOfTheirRangesAreAccepted) {
   // The guards must not reject the legitimate extremes a student will try.
   Scene s;
-  for (const char* ok : {"objective.na=0.95", "render.single_wavelength_nm=380",
-                         "render.single_wavelength_nm=780", "sample.thickness_um=0.001",
-                         "sample.optic_axis=[0,0,5]", "stage_deg=-720", "compensator_position=1",
-                         "render.width=1", "optics.lens_depth=0", "sample.crystal={\"no\":1.0001,\"ne\":5}"}) {
+  for (const char* ok :
+       {"objective.na=0.95", "render.single_wavelength_nm=380", "render.single_wavelength_nm=780",
+        "sample.thickness_um=0.001", "sample.optic_axis=[0,0,5]", "stage_deg=-720", "compensator_position=1",
+        "render.width=1", "optics.lens_depth=0", "sample.crystal={\"no\":1.0001,\"ne\":5}"}) {
     SCOPED_TRACE(ok);
     EXPECT_NO_THROW(apply_setting(s, ok));
   }

@@ -86,15 +86,15 @@ inline bool shows_value(const std::string& shown, const std::string& expected) {
 
 // The error must name the key and show the value (substring match: values are shown as the
 // user wrote them, numbers may be reformatted).
-#define EXPECT_INPUT_ERROR(expr, key_, value_)                                               \
-  do {                                                                                         \
-    auto err_ = ::pmsim::reliability::input_error_of([&] { (void)(expr); });                   \
-    if (err_) {                                                                                \
-      EXPECT_EQ(err_->key, std::string(key_)) << err_->what();                                 \
-      EXPECT_TRUE(::pmsim::reliability::shows_value(err_->value, value_))                     \
+#define EXPECT_INPUT_ERROR(expr, key_, value_)                                                     \
+  do {                                                                                             \
+    auto err_ = ::pmsim::reliability::input_error_of([&] { (void)(expr); });                       \
+    if (err_) {                                                                                    \
+      EXPECT_EQ(err_->key, std::string(key_)) << err_->what();                                     \
+      EXPECT_TRUE(::pmsim::reliability::shows_value(err_->value, value_))                          \
           << "value '" << err_->value << "' does not show '" << (value_) << "': " << err_->what(); \
-      EXPECT_NE(std::string(err_->what()).find(key_), std::string::npos) << err_->what();     \
-    }                                                                                          \
+      EXPECT_NE(std::string(err_->what()).find(key_), std::string::npos) << err_->what();          \
+    }                                                                                              \
   } while (0)
 
 struct CommandResult {

@@ -110,7 +110,8 @@ TEST(ConoscopicUniaxial, IsogyresFollowThePolarsNotTheStage) {
   const int c = 64, r = 40;  // sample points at radius 40 px
   auto at_angle = [&](const RenderImage& img, double deg) {
     const double a = radians(deg);
-    return Y(img, c + static_cast<int>(std::lround(r * std::cos(a))), c - 1 - static_cast<int>(std::lround(r * std::sin(a))));
+    return Y(img, c + static_cast<int>(std::lround(r * std::cos(a))),
+             c - 1 - static_cast<int>(std::lround(r * std::sin(a))));
   };
   for (double stage : {0.0, 30.0}) {
     s.stage_deg = stage;
@@ -160,8 +161,7 @@ TEST(ConoscopicBiaxial, MelatopesLieAtSinEEqualsNBetaSinV) {
   // One pixel of the 256-px radius ≈ 0.4 % of ρ ≈ 0.86; allow 1 %.
   EXPECT_NEAR(best, rho_expected, 0.01 * rho_expected);
   // The optic-axial plane is NE–SW: along the NW diagonal there is no zero of Γ inside the disk.
-  for (double r : minima(diagonal_profile(img, true)))
-    EXPECT_GT(std::fabs(r - rho_expected), 0.05);
+  for (double r : minima(diagonal_profile(img, true))) EXPECT_GT(std::fabs(r - rho_expected), 0.05);
 }
 
 TEST(ConoscopicBiaxial, AcuteBisectrixCrossOpensIntoHyperbolaeAt45Degrees) {

@@ -61,8 +61,8 @@ double brightness(const Scene& s) {
 }
 
 struct Measured {
-  double stage_deg;   // stage angle of extinction in [0, 90)
-  double contrast;    // (max − min)/max of the fitted curve: 1 for a clean extinction
+  double stage_deg;  // stage angle of extinction in [0, 90)
+  double contrast;   // (max − min)/max of the fitted curve: 1 for a clean extinction
 };
 
 // Between crossed polars I(θ) = I0·sin²(2(θ − θ0))·sin²(πΓ/λ) = A − B·cos(4(θ − θ0)) (Nesse 2012
@@ -122,25 +122,29 @@ glm::dvec3 north_of(const Cut& c) {
 // 1 − cos 4x). 0.05° is far above both and far below the published spreads (several degrees), so
 // a wrong orientation (side, axis, cut frame) cannot pass.
 TEST(ExtinctionFromRenders, MonoclinicPrismsCutParallelTo010WithCNorth) {
-  struct Case { Cut cut; double lo_deg, hi_deg; };
+  struct Case {
+    Cut cut;
+    double lo_deg, hi_deg;
+  };
   // Published ranges of Z ∧ c (the extinction angle to the c trace and to the {110} cleavage
   // traces, which are ∥ c in (010)): augite 35–48° (DHZ), diopside 38–48° (DHZ), hornblende
   // 12–34° (DHZ).
-  for (const Case& k : {Case{{"augite", "(010)", "[001]"}, 35, 48},
-                        Case{{"diopside", "(010)", "[001]"}, 38, 48},
-                        Case{{"hornblende", "(010)", "[001]"}, 12, 34}}) {
+  for (const Case& k :
+       {Case{{"augite", "(010)", "[001]"}, 35, 48}, Case{{"diopside", "(010)", "[001]"}, 38, 48},
+        Case{{"hornblende", "(010)", "[001]"}, 12, 34}}) {
     const Measured m = measure_extinction(k.cut);
     const double predicted = predicted_stage_deg(k.cut, north_of(k.cut));
-    EXPECT_LT(mod90_distance(m.stage_deg, predicted), 0.05) << k.cut.mineral << ": rendered " << m.stage_deg
-                                                            << "°, computed " << predicted << "°";
+    EXPECT_LT(mod90_distance(m.stage_deg, predicted), 0.05)
+        << k.cut.mineral << ": rendered " << m.stage_deg << "°, computed " << predicted << "°";
     const double angle = extinction_angle_from_stage(m.stage_deg);
     // Inside the published range, to the measurement tolerance (diopside's 38° is the end point).
     EXPECT_GE(angle, k.lo_deg - 0.05) << k.cut.mineral;
     EXPECT_LE(angle, k.hi_deg + 0.05) << k.cut.mineral;
     EXPECT_GT(m.contrast, 0.99) << k.cut.mineral;  // a real extinction, not a flat curve
-    std::printf("%-10s (010), [001] north: extinction at stage %.4f°, extinction angle %.4f° "
-                "(computed %.4f°; published %g–%g°)\n",
-                k.cut.mineral, m.stage_deg, angle, extinction_angle_from_stage(predicted), k.lo_deg, k.hi_deg);
+    std::printf(
+        "%-10s (010), [001] north: extinction at stage %.4f°, extinction angle %.4f° "
+        "(computed %.4f°; published %g–%g°)\n",
+        k.cut.mineral, m.stage_deg, angle, extinction_angle_from_stage(predicted), k.lo_deg, k.hi_deg);
   }
 }
 
@@ -167,9 +171,10 @@ TEST(ExtinctionFromRenders, MicasNearlyParallelToTheCleavageTrace) {
     EXPECT_LT(mod90_distance(m.stage_deg, predicted), 0.05) << c.mineral << " " << c.plane;
     const double angle = extinction_angle_from_stage(m.stage_deg);
     EXPECT_LE(angle, 3.5) << c.mineral << " " << c.plane;
-    std::printf("%-10s %s, %s north: extinction angle to the (001) trace %.4f° (computed %.4f°; "
-                "published 0 to ~3°)\n",
-                c.mineral, c.plane, c.north, angle, extinction_angle_from_stage(predicted));
+    std::printf(
+        "%-10s %s, %s north: extinction angle to the (001) trace %.4f° (computed %.4f°; "
+        "published 0 to ~3°)\n",
+        c.mineral, c.plane, c.north, angle, extinction_angle_from_stage(predicted));
   }
 }
 

@@ -191,7 +191,8 @@ TEST(AbsorbingCrystal, AutoUsesExactJonesMatricesInParallelLight) {
     const RenderImage a = ProgressiveRenderer::render(s, 1);
     const RenderImage e = ProgressiveRenderer::render(exact, 1);
     const RenderImage m = ProgressiveRenderer::render(modal, 1);
-    EXPECT_NE(a.model_report.find("absorbing crystals in parallel light"), std::string::npos) << a.model_report;
+    EXPECT_NE(a.model_report.find("absorbing crystals in parallel light"), std::string::npos)
+        << a.model_report;
     const double de_auto = ciede2000(lab_of(centre_xyz(a)), lab_of(centre_xyz(e)));
     const double de_modal = ciede2000(lab_of(centre_xyz(m)), lab_of(centre_xyz(e)));
     std::printf("[absorbing] biotite 30 µm, analyzer %s: auto %.3f, modal %.3f ΔE00 from exact\n",

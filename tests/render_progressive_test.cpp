@@ -33,7 +33,7 @@ TEST(ProgressiveRenderer, ConvergesAndReportsItsStatistics) {
   ASSERT_TRUE(r.snapshot(img));
   EXPECT_TRUE(img.converged);
   ASSERT_TRUE(img.error_estimate.has_value());  // two levels compared
-  EXPECT_LT(*img.error_estimate, 0.5);  // render.tolerance default
+  EXPECT_LT(*img.error_estimate, 0.5);          // render.tolerance default
   EXPECT_GE(img.passes, 2);
   EXPECT_EQ(img.width, 64);
   EXPECT_EQ(img.rgb.size(), 64u * 64u * 3u);
@@ -112,7 +112,8 @@ PreviewRun run_with_previews(const Scene& s) {
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i + 2 < std::min(first.xyz.size(), last.xyz.size()); i += 3) {
-    const glm::dvec3 a(first.xyz[i], first.xyz[i + 1], first.xyz[i + 2]), b(last.xyz[i], last.xyz[i + 1], last.xyz[i + 2]);
+    const glm::dvec3 a(first.xyz[i], first.xyz[i + 1], first.xyz[i + 2]),
+        b(last.xyz[i], last.xyz[i + 1], last.xyz[i + 2]);
     EXPECT_TRUE(std::isfinite(a.x + a.y + a.z));
     if (b.y <= 0 && a.y <= 0) continue;  // outside the disk: both black
     EXPECT_FALSE(b.y <= 0 && a.y > 0) << "preview lit a pixel outside the field";

@@ -1,6 +1,6 @@
-// A uniaxial plate cut ⟂ its optic axis is symmetric about the stage normal, so compile_evaluation_plan fits its
-// conoscopic figure from a radial table of modal fits instead of three mode solutions per pixel.
-// The table must reproduce the per-direction fits (Γ and the mode amplitudes) and the image.
+// A uniaxial plate cut ⟂ its optic axis is symmetric about the stage normal, so compile_evaluation_plan fits
+// its conoscopic figure from a radial table of modal fits instead of three mode solutions per pixel. The
+// table must reproduce the per-direction fits (Γ and the mode amplitudes) and the image.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,8 +64,11 @@ TEST(RadialModalTable, CalciteFigureFitsMatchPerDirectionFits) {
     double max_dgamma = 0.0, max_dc = 0.0;
     for (std::size_t u = 0; u < plan->units().size(); ++u)
       for (int a = 0; a < 3; ++a) {
-        max_dgamma = std::max(max_dgamma, std::fabs(plan->modal_terms()[u].gamma_nm[a] - direct.modal_terms()[u].gamma_nm[a]));
-        for (int k = 0; k < 5; ++k) max_dc = std::max(max_dc, std::fabs(plan->modal_terms()[u].c[k][a] - direct.modal_terms()[u].c[k][a]));
+        max_dgamma = std::max(
+            max_dgamma, std::fabs(plan->modal_terms()[u].gamma_nm[a] - direct.modal_terms()[u].gamma_nm[a]));
+        for (int k = 0; k < 5; ++k)
+          max_dc =
+              std::max(max_dc, std::fabs(plan->modal_terms()[u].c[k][a] - direct.modal_terms()[u].c[k][a]));
       }
     // Linear interpolation in sin²θ over 1025 entries: h²/8·|Γ''| ≈ 0.01 nm for Γ ≤ 1.7e5 nm;
     // 0.05 nm of Γ is 8e-4 rad of phase at 400 nm, invisible.

@@ -16,7 +16,8 @@ nlohmann::json furnace(const std::string& mode) {
     "type": "scene3d",
     "camera": {"position": [0, 0, 60], "look_at": [0, 0, 0], "fov_deg": 40, "width": 40,
                "height": 30},
-    "render": {"mode": ")" + mode + R"(", "wavelengths": 41, "max_depth": 24,
+    "render": {"mode": ")" + mode +
+                               R"(", "wavelengths": 41, "max_depth": 24,
                "background": [1, 1, 1], "tir": "split"},
     "lights": [{"type": "point", "position": [0, 100, 0], "intensity": 0}],
     "materials": {"bk7": {"type": "glass", "medium": "N-BK7"}},

@@ -104,15 +104,19 @@ TEST(Scene3dLoader, RejectsBadInputNamingFileKeyAndValue) {
   expect_rejected(j, "objects[1].size_mm", "-2");
 
   j = minimal();
-  j["objects"].push_back({{"type", "mesh"}, {"material", "white"},
+  j["objects"].push_back({{"type", "mesh"},
+                          {"material", "white"},
                           {"vertices", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
                           {"triangles", {{0, 1, 3}}}});
   expect_rejected(j, "objects[1].triangles[0]", "3");
 
   // Lens keys are the lens module's; the error is re-rooted at the object.
   j = minimal();
-  j["objects"].push_back({{"type", "lens"}, {"glass", "N-BK7"}, {"radius_mm", 5},
-                          {"front", {{"radius_mm", 3}}}, {"ledge_mm", 1}});
+  j["objects"].push_back({{"type", "lens"},
+                          {"glass", "N-BK7"},
+                          {"radius_mm", 5},
+                          {"front", {{"radius_mm", 3}}},
+                          {"ledge_mm", 1}});
   expect_rejected(j, "objects[1].front.radius_mm", "3");
 
   j = minimal();

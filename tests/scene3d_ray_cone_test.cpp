@@ -55,8 +55,7 @@ TEST(RayCone, OffAxisParallelRayThroughTheFlatFaceMatchesFresnelAtTheSphere) {
   EXPECT_NEAR(sag, 0.254033, 1e-6);
   const double L = lens.geometry().thickness_mm() - sag;
   const FresnelAmplitudes f = fresnel_amplitudes(std::sqrt(1.0 - std::pow(h / Rs, 2)), 1.0 / n);
-  const double expected = 0.5 * (1.0 - R0) * (f.T_s() + f.T_p()) *
-                          std::exp(-m.attenuation_per_mm * L);
+  const double expected = 0.5 * (1.0 - R0) * (f.T_s() + f.T_p()) * std::exp(-m.attenuation_per_mm * L);
   const RayConePath p = trace_ray_cone_path(lens, s, h);
   EXPECT_TRUE(p.clean);
   // 1e-12: closed form and SML evaluate the same formulas in a different order.

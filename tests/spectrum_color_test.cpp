@@ -22,9 +22,7 @@ TEST(Srgb, D65WhiteMapsToEqualPrimaries) {
 
 TEST(Srgb, InverseMatrixMatchesTheStandardsPrintedDecodingMatrix) {
   // IEC 61966-2-1 eq. (10) prints RGB → XYZ with 4 decimals; our exact inverse agrees to 1e-4.
-  const double printed[3][3] = {{0.4124, 0.3576, 0.1805},
-                                {0.2126, 0.7152, 0.0722},
-                                {0.0193, 0.1192, 0.9505}};
+  const double printed[3][3] = {{0.4124, 0.3576, 0.1805}, {0.2126, 0.7152, 0.0722}, {0.0193, 0.1192, 0.9505}};
   for (int c = 0; c < 3; ++c) {
     glm::dvec3 e(0.0);
     e[c] = 1.0;
@@ -57,12 +55,12 @@ TEST(SrgbTransfer, PiecewiseCurveValuesAndContinuity) {
 TEST(Srgb8, ClipsPerChannelRoundsAndMapsNanToBlack) {
   EXPECT_EQ(linear_to_srgb8(0.0), 0);
   EXPECT_EQ(linear_to_srgb8(1.0), 255);
-  EXPECT_EQ(linear_to_srgb8(7.5), 255);    // over-exposed: clipped in linear RGB
-  EXPECT_EQ(linear_to_srgb8(-0.3), 0);     // out of gamut: clipped
+  EXPECT_EQ(linear_to_srgb8(7.5), 255);  // over-exposed: clipped in linear RGB
+  EXPECT_EQ(linear_to_srgb8(-0.3), 0);   // out of gamut: clipped
   EXPECT_EQ(linear_to_srgb8(std::nan("")), 0);
   EXPECT_EQ(linear_to_srgb8(std::numeric_limits<double>::infinity()), 255);
-  EXPECT_EQ(linear_to_srgb8(0.18), 118);   // round(255·0.461356) = round(117.65)
-  EXPECT_EQ(linear_to_srgb8(0.5), 188);    // round(255·0.735357) = round(187.52)
+  EXPECT_EQ(linear_to_srgb8(0.18), 118);                        // round(255·0.461356) = round(117.65)
+  EXPECT_EQ(linear_to_srgb8(0.5), 188);                         // round(255·0.735357) = round(187.52)
   EXPECT_EQ(linear_to_srgb8(srgb_decode(128.0 / 255.0)), 128);  // exact code values survive
 }
 
@@ -81,14 +79,16 @@ TEST(Cielab, WhiteIsL100AndNeutralsHaveNoChroma) {
   EXPECT_NEAR(dark.x, 24389.0 / 27.0 * 0.001, 1e-12);
   // Continuity at the branch point (6/29)^3.
   const double t = 216.0 / 24389.0;
-  EXPECT_NEAR(xyz_to_lab((t * (1 + 1e-12)) * white, white).x,
-              xyz_to_lab((t * (1 - 1e-12)) * white, white).x, 1e-8);
+  EXPECT_NEAR(xyz_to_lab((t * (1 + 1e-12)) * white, white).x, xyz_to_lab((t * (1 - 1e-12)) * white, white).x,
+              1e-8);
 }
 
 // Sharma, Wu & Dalal, "The CIEDE2000 color-difference formula: implementation notes,
 // supplementary test data, and mathematical observations", Color Res. Appl. 30 (2005) 21–30,
 // Table 1: the 34 test pairs (L1 a1 b1 L2 a2 b2 ΔE00).
-struct De2000Pair { double L1, a1, b1, L2, a2, b2, dE; };
+struct De2000Pair {
+  double L1, a1, b1, L2, a2, b2, dE;
+};
 constexpr De2000Pair kSharmaPairs[34] = {
     {50.0000, 2.6772, -79.7751, 50.0000, 0.0000, -82.7485, 2.0425},
     {50.0000, 3.1571, -77.2803, 50.0000, 0.0000, -82.7485, 2.8615},

@@ -18,7 +18,10 @@ double integrate(const SampledWavelengths& s, double (*f)(double)) {
 }
 
 double ybar(double nm) { return cie1931_xyz_bar(nm).y; }
-double quadratic(double nm) { const double t = (nm - 380.0) / 400.0; return t * t; }
+double quadratic(double nm) {
+  const double t = (nm - 380.0) / 400.0;
+  return t * t;
+}
 // ∫ t² dλ with t = (λ − 380)/400 over 400 nm = 400/3.
 constexpr double kQuadraticIntegral = 400.0 / 3.0;
 
@@ -65,8 +68,7 @@ TEST(UniformWavelengths, TrapezoidErrorOnQuadraticIsH2Over2400) {
   // the test checks the rule's order, not just smallness (rounding ~1e-13).
   for (int n : {2, 5, 11, 21, 41, 81}) {
     const double h = 400.0 / (n - 1);
-    EXPECT_NEAR(integrate(uniform_wavelengths(n), quadratic) - kQuadraticIntegral,
-                h * h / 2400.0, 1e-11)
+    EXPECT_NEAR(integrate(uniform_wavelengths(n), quadratic) - kQuadraticIntegral, h * h / 2400.0, 1e-11)
         << n;
   }
 }
@@ -161,10 +163,8 @@ TEST(HeroWavelengths, ErrorShrinksWithCompanionCount) {
   // A randomly shifted equally spaced rule: for t² (whose periodic extension jumps at 780 nm)
   // the RMS error falls like 1/n, so 8 → 64 gains ≈ 8 (require > 5); ȳ vanishes at both ends, so
   // its periodic extension is continuous and the gain is larger (require > 12).
-  const double eq8 = rms_error([](int t) { return hero_seeded(8, t); }, quadratic,
-                               kQuadraticIntegral, 400);
-  const double eq64 = rms_error([](int t) { return hero_seeded(64, t); }, quadratic,
-                                kQuadraticIntegral, 400);
+  const double eq8 = rms_error([](int t) { return hero_seeded(8, t); }, quadratic, kQuadraticIntegral, 400);
+  const double eq64 = rms_error([](int t) { return hero_seeded(64, t); }, quadratic, kQuadraticIntegral, 400);
   EXPECT_GT(eq8 / eq64, 5.0) << eq8 << " " << eq64;
   const double ref = ybar_reference();
   const double ey8 = rms_error([](int t) { return hero_seeded(8, t); }, ybar, ref, 400);

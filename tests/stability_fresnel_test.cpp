@@ -17,7 +17,8 @@ namespace {
 
 bool finite(const FresnelAmplitudes& f) {
   return std::isfinite(f.r_s.real()) && std::isfinite(f.r_s.imag()) && std::isfinite(f.r_p.real()) &&
-         std::isfinite(f.r_p.imag()) && std::isfinite(f.t_s) && std::isfinite(f.t_p) && std::isfinite(f.cos_t);
+         std::isfinite(f.r_p.imag()) && std::isfinite(f.t_s) && std::isfinite(f.t_p) &&
+         std::isfinite(f.cos_t);
 }
 
 const std::vector<double> kEtas = {1.5, 1.0 / 1.5, 1.0, 1.0 + 1e-12, 1.0 - 1e-12, 2.4, 1.0 / 2.4, 1.0003};

@@ -33,7 +33,8 @@ glm::dvec3 random_unit(std::mt19937_64& rng) {
 
 TEST(StabilityFuzz, SixHundredThousandRandomRaysThroughSmlLensesStayFiniteAndBalanced) {
   std::vector<LensSpec> specs(4);
-  specs[0].radius_mm = 4.25, specs[0].front_radius_mm = 4.3, specs[0].back_radius_mm = -4.3, specs[0].ledge_mm = 0.3;
+  specs[0].radius_mm = 4.25, specs[0].front_radius_mm = 4.3, specs[0].back_radius_mm = -4.3,
+  specs[0].ledge_mm = 0.3;
   specs[1].radius_mm = 5, specs[1].front_radius_mm = 5, specs[1].back_radius_mm = 0, specs[1].ledge_mm = 0;
   specs[2].radius_mm = 5, specs[2].front_radius_mm = 5, specs[2].back_radius_mm = -5, specs[2].ledge_mm = 0;
   specs[3].radius_mm = 5, specs[3].front_radius_mm = 0, specs[3].back_radius_mm = 0, specs[3].ledge_mm = 2;
@@ -50,8 +51,9 @@ TEST(StabilityFuzz, SixHundredThousandRandomRaysThroughSmlLensesStayFiniteAndBal
     PolarizedRay r;
     // Half the rays aimed at the lens, half anywhere (misses, rays from inside, grazing).
     r.origin = g.center() + random_unit(rng) * (g.size_mm() * (0.01 + 3.0 * u(rng)));
-    r.dir = (i & 1) ? random_unit(rng)
-                    : glm::normalize(g.center() + random_unit(rng) * g.aperture_radius_mm() * u(rng) - r.origin);
+    r.dir = (i & 1)
+                ? random_unit(rng)
+                : glm::normalize(g.center() + random_unit(rng) * g.aperture_radius_mm() * u(rng) - r.origin);
     if (!std::isfinite(r.dir.x)) r.dir = {0, 0, 1};
     glm::dvec3 a = glm::cross(r.dir, random_unit(rng));
     if (glm::length(a) < 1e-9) a = glm::cross(r.dir, glm::dvec3(1, 0, 0));
@@ -115,7 +117,8 @@ TEST(StabilityFuzz, FourHundredThousandRandomPlaneWavesThroughPlatesStayFiniteAn
     PlateSpec spec;
     spec.crystal = c;
     const glm::dvec3 z = random_unit(rng), x = random_unit(rng);
-    spec.crystal_to_lab = c->symmetry() == CrystalSymmetry::Biaxial ? biaxial_orientation(x, z) : uniaxial_orientation(z);
+    spec.crystal_to_lab =
+        c->symmetry() == CrystalSymmetry::Biaxial ? biaxial_orientation(x, z) : uniaxial_orientation(z);
     spec.thickness_um = std::pow(10.0, -3.0 + 8.0 * u(rng));  // 1 nm … 100 mm
     spec.n_outside = 1.0 + 0.8 * u(rng);
     spec.fresnel = u(rng) < 0.7;
@@ -125,11 +128,12 @@ TEST(StabilityFuzz, FourHundredThousandRandomPlaneWavesThroughPlatesStayFiniteAn
     const double nm = 380.0 + 400.0 * u(rng);
     const JonesMatrix J = plate_jones(spec, k, nm);
     bool ok = true;
-    for (const complexd& v : {J.xx, J.xy, J.yx, J.yy}) ok = ok && std::isfinite(v.real()) && std::isfinite(v.imag());
+    for (const complexd& v : {J.xx, J.xy, J.yx, J.yy})
+      ok = ok && std::isfinite(v.real()) && std::isfinite(v.imag());
     if (!ok) {
       if (++bad < 5)
-        ADD_FAILURE() << "non-finite Jones: " << c->name() << " d " << spec.thickness_um << " µm k (" << k.x << ", "
-                      << k.y << ", " << k.z << ") λ " << nm << " n_out " << spec.n_outside;
+        ADD_FAILURE() << "non-finite Jones: " << c->name() << " d " << spec.thickness_um << " µm k (" << k.x
+                      << ", " << k.y << ", " << k.z << ") λ " << nm << " n_out " << spec.n_outside;
       continue;
     }
     // Passive: no input polarization gains intensity (the plate neglects multiple reflections,
@@ -171,7 +175,8 @@ TEST(StabilityFuzz, PlateWithoutFresnelFacesIsPassiveAtObliqueIncidence) {
       const double ta = kPi * i / 12, pa = 2 * kPi * j / 12;
       PlateSpec spec;
       spec.crystal = &calcite;
-      spec.crystal_to_lab = uniaxial_orientation({std::sin(ta) * std::cos(pa), std::sin(ta) * std::sin(pa), std::cos(ta)});
+      spec.crystal_to_lab =
+          uniaxial_orientation({std::sin(ta) * std::cos(pa), std::sin(ta) * std::sin(pa), std::cos(ta)});
       spec.thickness_um = 74.0;
       spec.fresnel = false;
       for (double theta : {0.5, 1.0, 1.46})

@@ -61,7 +61,11 @@ TEST(StabilityLens, DegenerateLensesTraceFiniteBalancedBundles) {
     LensSpec s;
   };
   const Case cases[] = {
-      {"plane-plane slab", [] { auto s = spec(5.0, 0.0, 0.0, 2.0); return s; }()},
+      {"plane-plane slab",
+       [] {
+         auto s = spec(5.0, 0.0, 0.0, 2.0);
+         return s;
+       }()},
       {"hemisphere (R = aperture, plane back)", spec(5.0, 5.0, 0.0, 0.0)},
       {"ball (both R = aperture, no ledge)", spec(5.0, 5.0, -5.0, 0.0)},
       {"meniscus-like R = aperture both same sign", spec(5.0, 5.0, 5.0, 1.0)},
@@ -74,12 +78,12 @@ TEST(StabilityLens, DegenerateLensesTraceFiniteBalancedBundles) {
     const double rho = g.aperture_radius_mm();
     const glm::dvec3 fv = g.front_vertex();
     std::vector<PolarizedRay> rays = {
-        ray(fv - glm::dvec3(0, 0, 10), {0, 0, 1}, 0.0),                          // on the axis, normal incidence
-        ray(fv + glm::dvec3(rho, 0, -10), {0, 0, 1}, 0.5),                       // exactly at the rim
-        ray(fv + glm::dvec3(rho * (1 - 1e-12), 0, -10), {0, 0, 1}, 1.0),        // 1e-12 inside the rim
-        ray(g.center() + glm::dvec3(-20, 0, 0), {1, 0, 1e-9}, 0.2),             // grazing through the middle
-        ray(g.center() + glm::dvec3(0, -20, 0.1), {0, 1, 0}, 0.3),              // ⟂ axis
-        ray(g.center(), {0, 0, 1}, 0.0),                                         // starting inside
+        ray(fv - glm::dvec3(0, 0, 10), {0, 0, 1}, 0.0),                   // on the axis, normal incidence
+        ray(fv + glm::dvec3(rho, 0, -10), {0, 0, 1}, 0.5),                // exactly at the rim
+        ray(fv + glm::dvec3(rho * (1 - 1e-12), 0, -10), {0, 0, 1}, 1.0),  // 1e-12 inside the rim
+        ray(g.center() + glm::dvec3(-20, 0, 0), {1, 0, 1e-9}, 0.2),       // grazing through the middle
+        ray(g.center() + glm::dvec3(0, -20, 0.1), {0, 1, 0}, 0.3),        // ⟂ axis
+        ray(g.center(), {0, 0, 1}, 0.0),                                  // starting inside
     };
     for (int i = 0; i < 200; ++i)
       rays.push_back(ray(g.center() + glm::dvec3(u(rng), u(rng), u(rng)) * (3.0 * g.size_mm()),
@@ -130,7 +134,8 @@ TEST(StabilityLens, SplitTirCascadesAtLargeDepthStayBoundedInRaysAndEnergy) {
     int limited = 0;
     for (int i = 0; i < 200; ++i) {
       const double r = 5.0 * (0.7 + 0.3 * u(rng)), a = 2 * kPi * u(rng);
-      const glm::dvec3 target = g.front_vertex() + glm::dvec3(r * std::cos(a), r * std::sin(a), 5.0 - std::sqrt(25.0 - r * r));
+      const glm::dvec3 target =
+          g.front_vertex() + glm::dvec3(r * std::cos(a), r * std::sin(a), 5.0 - std::sqrt(25.0 - r * r));
       const glm::dvec3 from = target + glm::dvec3(-std::cos(a), -std::sin(a), -0.3) * 4.0;
       LensBundle b;
       trace_lens(g, bk7_like(), ray(from, target - from, 6.0 * u(rng)), opt, b);
@@ -163,7 +168,8 @@ TEST(StabilityLens, TwoHundredMillimetrePathsNeedDoubleOrDifferences) {
   pf2 = pf1 + static_cast<float>(gamma_nm * 1e-6);
   pd2 = pd1 + gamma_nm * 1e-6;
   const double two_pi = 2.0 * kPi;
-  const double cos_float = std::cos(two_pi * (static_cast<double>(pf2) - static_cast<double>(pf1)) * 1e6 / lambda_nm);
+  const double cos_float =
+      std::cos(two_pi * (static_cast<double>(pf2) - static_cast<double>(pf1)) * 1e6 / lambda_nm);
   const double cos_double = std::cos(two_pi * (pd2 - pd1) * 1e6 / lambda_nm);
   // float at 303 mm has an ulp of 3e-5 mm = 30 nm: the 137.5 nm difference is quantised to a
   // multiple of 30 nm, so the phase is off by up to ~0.34 rad — a visible colour error. Show it:

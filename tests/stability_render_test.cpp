@@ -35,7 +35,8 @@ Stats stats(const RenderImage& img, Illuminant illum) {
   const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec3 xyz(img.xyz[3 * i], img.xyz[3 * i + 1], img.xyz[3 * i + 2]);
-    for (int c = 0; c < 3; ++c) st.finite = st.finite && std::isfinite(img.xyz[3 * i + c]) && std::isfinite(img.rgb[3 * i + c]);
+    for (int c = 0; c < 3; ++c)
+      st.finite = st.finite && std::isfinite(img.xyz[3 * i + c]) && std::isfinite(img.rgb[3 * i + c]);
     st.min_y = std::min(st.min_y, xyz.y);
     st.max_y = std::max(st.max_y, xyz.y);
     st.mean_y += xyz.y / n;
@@ -113,8 +114,8 @@ TEST(StabilityRender, TenMillionNanometreRetardationAveragesToHighOrderWhite) {
   s.stage_deg = 45.0;
   const Stats st = stats(ProgressiveRenderer::render(s, 2), s.illuminant);
   ASSERT_TRUE(st.finite);
-  EXPECT_NEAR(st.mean_y, 0.5, 0.05);       // ½ minus < 10 % Fresnel loss at the two faces
-  EXPECT_LT(st.max_y - st.min_y, 1e-6);    // a uniform plate: one evaluation for the field
+  EXPECT_NEAR(st.mean_y, 0.5, 0.05);     // ½ minus < 10 % Fresnel loss at the two faces
+  EXPECT_LT(st.max_y - st.min_y, 1e-6);  // a uniform plate: one evaluation for the field
   // Aliasing would leave a random colour of a few orders (chroma 20–60); high-order white has a
   // chroma of a few units at most (the residual oscillation averages over 400 nm / 2e4 orders).
   EXPECT_LT(st.max_chroma, 3.0);

@@ -78,7 +78,8 @@ TEST_F(UiCli, BadInputExitsWith2NamingTheKeyAndWritesNothing) {
 TEST_F(UiCli, ScriptsRunAndABadScriptLineExitsWith2) {
   const std::string script = kOut + "/s.pmsim", shot = kOut + "/scripted.png";
   std::ofstream(script) << "set render.width=48\nset render.height=48\nkey C\nwait converged 60\n"
-                           "screenshot " << shot << "\n";
+                           "screenshot "
+                        << shot << "\n";
   std::string out;
   ASSERT_EQ(run("--headless --script " + script, &out), 0) << out;
   const pmsim::LoadedImage img = pmsim::read_image(shot);

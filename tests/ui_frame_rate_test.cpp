@@ -106,8 +106,7 @@ TEST(UiFrameRate, ReportsFramesPerSecondWhileRendering) {
   EXPECT_EQ(refining.ms.size(), 60u);
   EXPECT_GE(dragging.ms.size(), 60u);
   // After the drag the renderer is on the final stage angle, and the field shows it.
-  EXPECT_TRUE(frames_until_new_image(*d, d->app().counters().uploads) ||
-              d->app().image_current());
+  EXPECT_TRUE(frames_until_new_image(*d, d->app().counters().uploads) || d->app().image_current());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
   while (!d->app().image_current() && std::chrono::steady_clock::now() < deadline) {
     d->frame();
@@ -124,16 +123,17 @@ TEST(UiFrameRate, ReportsFramesPerSecondWhileRendering) {
   EXPECT_EQ(section.changes, 8u);
   EXPECT_EQ(figure.changes, 8u);
 
-  std::printf("[fps] 1280x800 %s: refining 512^2 section %.1f fps (p95 %.1f ms, %llu new images "
-              "in %zu frames), dragging the stage %.1f fps (p95 %.1f ms); first image of a change "
-              "on screen (frames paced at 60 Hz) after %.1f frames, %.1f ms on average (section 512^2; at "
-              "most %.1f ms), %.1f frames, %.1f ms (conoscopic figure 512^2; at most %.1f ms), %llu "
-              "frames at most\n",
-              d->gl_name(), refining.fps(), refining.percentile_ms(0.95),
-              static_cast<unsigned long long>(uploads1 - uploads0), refining.ms.size(),
-              dragging.fps(), dragging.percentile_ms(0.95), section.mean_frames, section.mean_ms,
-              section.max_ms, figure.mean_frames, figure.mean_ms, figure.max_ms,
-              static_cast<unsigned long long>(std::max(section.max_frames, figure.max_frames)));
+  std::printf(
+      "[fps] 1280x800 %s: refining 512^2 section %.1f fps (p95 %.1f ms, %llu new images "
+      "in %zu frames), dragging the stage %.1f fps (p95 %.1f ms); first image of a change "
+      "on screen (frames paced at 60 Hz) after %.1f frames, %.1f ms on average (section 512^2; at "
+      "most %.1f ms), %.1f frames, %.1f ms (conoscopic figure 512^2; at most %.1f ms), %llu "
+      "frames at most\n",
+      d->gl_name(), refining.fps(), refining.percentile_ms(0.95),
+      static_cast<unsigned long long>(uploads1 - uploads0), refining.ms.size(), dragging.fps(),
+      dragging.percentile_ms(0.95), section.mean_frames, section.mean_ms, section.max_ms, figure.mean_frames,
+      figure.mean_ms, figure.max_ms,
+      static_cast<unsigned long long>(std::max(section.max_frames, figure.max_frames)));
 }
 
 }  // namespace

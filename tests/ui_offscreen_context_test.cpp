@@ -42,13 +42,9 @@ void expect_window_drawn(OffscreenApi api, const char* name) {
   EXPECT_LT(panel[0], 60);
 }
 
-TEST(UiOffscreen, EglSurfacelessDrawsTheWindow) {
-  expect_window_drawn(OffscreenApi::EglSurfaceless, "egl");
-}
+TEST(UiOffscreen, EglSurfacelessDrawsTheWindow) { expect_window_drawn(OffscreenApi::EglSurfaceless, "egl"); }
 
-TEST(UiOffscreen, OSMesaFallbackDrawsTheWindow) {
-  expect_window_drawn(OffscreenApi::OSMesa, "osmesa");
-}
+TEST(UiOffscreen, OSMesaFallbackDrawsTheWindow) { expect_window_drawn(OffscreenApi::OSMesa, "osmesa"); }
 
 }  // namespace
 }  // namespace pmsim::ui

@@ -40,8 +40,8 @@ Rgb box(const WindowPixels& px, float x, float y, int h = 3) {
 // (+x east, +y north).
 Rgb field_at(const WindowPixels& px, const Layout& l, double east, double north, int h = 3) {
   const double r = l.field_radius();
-  return box(px, static_cast<float>(l.field.cx() + east * r),
-             static_cast<float>(l.field.cy() - north * r), h);
+  return box(px, static_cast<float>(l.field.cx() + east * r), static_cast<float>(l.field.cy() - north * r),
+             h);
 }
 
 // Small images keep the suite fast; the layout scales them up to the field.

@@ -72,7 +72,7 @@ TEST(UiScript, ShortcutKeysDriveTheInstrument) {
   ASSERT_TRUE(d);
   ASSERT_TRUE(run(*d, "key Right\nkey shift+Left\n").ok);
   EXPECT_DOUBLE_EQ(d->app().scene().stage_deg, 14.0);  // −1 + 15
-  ASSERT_TRUE(run(*d, "key C\n").ok);  // conoscopic: condenser lens and Bertrand together
+  ASSERT_TRUE(run(*d, "key C\n").ok);                  // conoscopic: condenser lens and Bertrand together
   EXPECT_EQ(d->app().scene().mode, ViewMode::Cono);
   EXPECT_TRUE(d->app().scene().bertrand_in);
   ASSERT_TRUE(run(*d, "key B\nkey A\nkey 4\nkey G\nkey G\n").ok);
@@ -97,8 +97,9 @@ TEST(UiScript, BadInputRaisesTheBannerAndKeepsTheLastGoodScene) {
   const WindowPixels px = d->read_pixels();
   const Layout& l = d->app().layout();
   // A point of the banner below its two text lines and left of its button.
-  const std::uint8_t* p = &px.rgb[(static_cast<size_t>(l.view.y + 70) * px.width +
-                                   static_cast<int>(l.view.x + l.view.w * 0.6f)) * 3];
+  const std::uint8_t* p =
+      &px.rgb[(static_cast<size_t>(l.view.y + 70) * px.width + static_cast<int>(l.view.x + l.view.w * 0.6f)) *
+              3];
   EXPECT_GT(p[0], 120);
   EXPECT_GT(p[0], 2 * p[1]);
   EXPECT_GT(p[0], 2 * p[2]);
@@ -117,9 +118,8 @@ TEST(UiScript, ExportsAndScreenshotsCarryTheSceneAndSaveLoadRoundTrips) {
   const std::string field = out_path("field.png"), exr = out_path("field.exr"),
                     window = out_path("window.png"), scene = out_path("scene.json");
   for (const auto& f : {field, exr, window, scene}) std::filesystem::remove(f);
-  const ScriptResult r = run(*d, "set stage_deg=33\nwait converged 60\nexport " + field +
-                                     "\nexport " + exr + "\nscreenshot " + window + "\nsave " +
-                                     scene + "\n");
+  const ScriptResult r = run(*d, "set stage_deg=33\nwait converged 60\nexport " + field + "\nexport " + exr +
+                                     "\nscreenshot " + window + "\nsave " + scene + "\n");
   ASSERT_TRUE(r.ok) << r.error;
   const LoadedImage f = read_image(field);
   EXPECT_EQ(f.width, 48);

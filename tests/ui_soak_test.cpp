@@ -33,25 +33,40 @@ std::string random_setting(std::mt19937& rng) {
     return std::to_string(std::uniform_real_distribution<double>(a, b)(rng));
   };
   switch (std::uniform_int_distribution<int>(0, 15)(rng)) {
-    case 0: return "stage_deg=" + num(-720, 720);
-    case 1: return "polarizer_deg=" + num(0, 360);
-    case 2: return "analyzer_deg=" + num(0, 360);
-    case 3: return "analyzer=" + pick({"in", "out"});
-    case 4: return "mode=" + pick({"ortho", "cono"});
-    case 5: return "bertrand=" + pick({"in", "out"});
-    case 6: return "compensator=" + pick({"none", "gypsum", "mica", "quartz_wedge"});
-    case 7: return "compensator_position=" + num(0, 1);
-    case 8: return "objective.na=" + pick({"0.10", "0.25", "0.65", "0.85"});
-    case 9: return "illuminant=" + pick({"D65", "A"});
-    case 10: return "sample.mineral=" + pick({"quartz", "calcite", "muscovite", "biotite",
-                                             "olivine", "gypsum", "augite", "plagioclase"});
-    case 11: return "sample.thickness_um=" + num(1, 200);
-    case 12: return "sample.optic_axis=[" + num(-1, 1) + "," + num(-1, 1) + "," + num(-1, 1) + "]";
-    case 13: return "sample.type=" + pick({"plate", "wedge", "plate"});
-    case 14: return "sample.present=" + pick({"true", "false", "true"});
+    case 0:
+      return "stage_deg=" + num(-720, 720);
+    case 1:
+      return "polarizer_deg=" + num(0, 360);
+    case 2:
+      return "analyzer_deg=" + num(0, 360);
+    case 3:
+      return "analyzer=" + pick({"in", "out"});
+    case 4:
+      return "mode=" + pick({"ortho", "cono"});
+    case 5:
+      return "bertrand=" + pick({"in", "out"});
+    case 6:
+      return "compensator=" + pick({"none", "gypsum", "mica", "quartz_wedge"});
+    case 7:
+      return "compensator_position=" + num(0, 1);
+    case 8:
+      return "objective.na=" + pick({"0.10", "0.25", "0.65", "0.85"});
+    case 9:
+      return "illuminant=" + pick({"D65", "A"});
+    case 10:
+      return "sample.mineral=" + pick({"quartz", "calcite", "muscovite", "biotite", "olivine", "gypsum",
+                                       "augite", "plagioclase"});
+    case 11:
+      return "sample.thickness_um=" + num(1, 200);
+    case 12:
+      return "sample.optic_axis=[" + num(-1, 1) + "," + num(-1, 1) + "," + num(-1, 1) + "]";
+    case 13:
+      return "sample.type=" + pick({"plate", "wedge", "plate"});
+    case 14:
+      return "sample.present=" + pick({"true", "false", "true"});
     default:  // bad input: must raise the banner and change nothing
-      return pick({"sample.thickness_um=-1", "objective.na=7", "sample.mineral=kryptonite",
-                   "mode=sideways", "stage_deg=nan"});
+      return pick({"sample.thickness_um=-1", "objective.na=7", "sample.mineral=kryptonite", "mode=sideways",
+                   "stage_deg=nan"});
   }
 }
 
@@ -82,8 +97,7 @@ void soak(int changes) {
     if (kind < 6) {
       d->app().set(random_setting(rng));
     } else if (kind < 8) {
-      d->inject_key(keys[std::uniform_int_distribution<size_t>(0, keys.size() - 1)(rng)],
-                    false, false);
+      d->inject_key(keys[std::uniform_int_distribution<size_t>(0, keys.size() - 1)(rng)], false, false);
     } else {
       // Mouse on the field: press, move, release over the next frames.
       std::uniform_real_distribution<float> fx(l.field.x, l.field.x + l.field.w),
@@ -95,15 +109,14 @@ void soak(int changes) {
     ++frames;
   }
   d->release_mouse();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double rss_end = rss_mb();
   const auto& c = d->app().counters();
-  std::printf("[soak] %d changes, %d frames in %.1f s (%.1f fps), renderer images shown %llu, "
-              "rejected %llu, RSS start %.1f MB end %.1f MB\n",
-              changes, frames, seconds, frames / seconds,
-              static_cast<unsigned long long>(c.uploads - uploads_before),
-              static_cast<unsigned long long>(c.rejected), rss_start, rss_end);
+  std::printf(
+      "[soak] %d changes, %d frames in %.1f s (%.1f fps), renderer images shown %llu, "
+      "rejected %llu, RSS start %.1f MB end %.1f MB\n",
+      changes, frames, seconds, frames / seconds, static_cast<unsigned long long>(c.uploads - uploads_before),
+      static_cast<unsigned long long>(c.rejected), rss_start, rss_end);
   // Every frame was built and presented.
   EXPECT_EQ(c.frames - frames_before, static_cast<std::uint64_t>(frames));
   EXPECT_GE(d->frame_times().ms.size(), static_cast<size_t>(frames));

@@ -20,10 +20,10 @@
 namespace pmsim::ui {
 namespace {
 
-
 // The objective turret, in the order of the 1…4 shortcuts.
-constexpr struct { double magnification, na; } kObjectives[] = {
-    {4, 0.10}, {10, 0.25}, {40, 0.65}, {50, 0.85}};
+constexpr struct {
+  double magnification, na;
+} kObjectives[] = {{4, 0.10}, {10, 0.25}, {40, 0.65}, {50, 0.85}};
 
 // Exports and screenshots go where the user says, creating the folder (e.g. out/ui/) if needed.
 void make_parent_folder(const std::string& path) {
@@ -261,8 +261,7 @@ void App::draw_field(Scene& edit, bool& changed) {
   const ImVec2 c(l.field.cx(), l.field.cy());
   // The field stop of the eyepiece: the image seen through a circle, as in the instrument.
   if (field_texture_.valid())
-    draw->AddImageRounded(field_texture_.imgui_id(), p0, p1, ImVec2(0, 0), ImVec2(1, 1),
-                          IM_COL32_WHITE, r);
+    draw->AddImageRounded(field_texture_.imgui_id(), p0, p1, ImVec2(0, 0), ImVec2(1, 1), IM_COL32_WHITE, r);
   else
     draw->AddCircleFilled(c, r, IM_COL32(0, 0, 0, 255), 96);
   draw->AddCircle(c, r, IM_COL32(10, 10, 10, 255), 96, 2.0f);
@@ -305,8 +304,7 @@ void App::draw_field(Scene& edit, bool& changed) {
     ImGui::SetCursorScreenPos(ImVec2(l.view.x + 8, l.view.y + 8));
     ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.65f, 0.10f, 0.10f, 0.95f));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(10, 8));
-    ImGui::BeginChild("##error", ImVec2(l.view.w - 16, 72), true,
-                      ImGuiWindowFlags_AlwaysUseWindowPadding);
+    ImGui::BeginChild("##error", ImVec2(l.view.w - 16, 72), true, ImGuiWindowFlags_AlwaysUseWindowPadding);
     ImGui::PushTextWrapPos(l.view.w - 110);
     ImGui::TextUnformatted("Not applied, the last good state is kept:");
     ImGui::TextUnformatted(error_.c_str());
@@ -326,19 +324,18 @@ void App::draw_status() {
   ImGui::SetNextWindowPos(ImVec2(l.status.x, l.status.y));
   ImGui::SetNextWindowSize(ImVec2(l.status.w, l.status.h));
   ImGui::Begin("##status", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBackground);
   const RenderImage& im = image_;
   const bool current = image_current_;
   char err[32] = "err -";  // no estimate yet (a preview, the first pass)
   if (im.error_estimate) std::snprintf(err, sizeof err, "err %.2f dE00", *im.error_estimate);
   ImGui::Text("%s  %.1f spp  %d wl  pass %d  %s  %s  %.0f ms", current ? "" : "(previous)",
-              im.samples_per_pixel, im.wavelengths, im.passes, err,
-              im.converged ? "converged" : "refining", im.time_ms);
+              im.samples_per_pixel, im.wavelengths, im.passes, err, im.converged ? "converged" : "refining",
+              im.time_ms);
   ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  %s", counters_.fps, counters_.frame_ms,
               scene_.stage_deg, notice_.c_str());
-  if (ImGui::IsWindowHovered() && !im.model_report.empty())
-    ImGui::SetTooltip("%s", im.model_report.c_str());
+  if (ImGui::IsWindowHovered() && !im.model_report.empty()) ImGui::SetTooltip("%s", im.model_report.c_str());
   ImGui::End();
 }
 
@@ -348,8 +345,8 @@ void App::handle_shortcuts(Scene& edit, bool& changed) {
   for (const Shortcut& s : shortcuts()) {
     if (s.shift != io.KeyShift || s.ctrl != io.KeyCtrl) continue;
     // Turning keys repeat while held, toggles do not (holding A must not flicker the analyzer).
-    const bool repeats = s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn ||
-                         s.action == Action::WedgeOut;
+    const bool repeats =
+        s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn || s.action == Action::WedgeOut;
     if (ImGui::IsKeyPressed(s.key, repeats)) apply_action(s.action, edit, changed);
   }
 }
@@ -367,16 +364,46 @@ void App::perform(Action action) {
 void App::apply_action(Action action, Scene& edit, bool& changed) {
   auto change = [&] { changed = true; };
   switch (action) {
-    case Action::StageCcw: edit.stage_deg += 1; change(); break;
-    case Action::StageCw: edit.stage_deg -= 1; change(); break;
-    case Action::StageCcwCoarse: edit.stage_deg += 15; change(); break;
-    case Action::StageCwCoarse: edit.stage_deg -= 15; change(); break;
-    case Action::StageZero: edit.stage_deg = 0; change(); break;
-    case Action::PolarizerUp: edit.polarizer_deg = wrap_deg(edit.polarizer_deg + 5); change(); break;
-    case Action::PolarizerDown: edit.polarizer_deg = wrap_deg(edit.polarizer_deg - 5); change(); break;
-    case Action::AnalyzerUp: edit.analyzer_deg = wrap_deg(edit.analyzer_deg + 5); change(); break;
-    case Action::AnalyzerDown: edit.analyzer_deg = wrap_deg(edit.analyzer_deg - 5); change(); break;
-    case Action::ToggleAnalyzer: edit.analyzer_in = !edit.analyzer_in; change(); break;
+    case Action::StageCcw:
+      edit.stage_deg += 1;
+      change();
+      break;
+    case Action::StageCw:
+      edit.stage_deg -= 1;
+      change();
+      break;
+    case Action::StageCcwCoarse:
+      edit.stage_deg += 15;
+      change();
+      break;
+    case Action::StageCwCoarse:
+      edit.stage_deg -= 15;
+      change();
+      break;
+    case Action::StageZero:
+      edit.stage_deg = 0;
+      change();
+      break;
+    case Action::PolarizerUp:
+      edit.polarizer_deg = wrap_deg(edit.polarizer_deg + 5);
+      change();
+      break;
+    case Action::PolarizerDown:
+      edit.polarizer_deg = wrap_deg(edit.polarizer_deg - 5);
+      change();
+      break;
+    case Action::AnalyzerUp:
+      edit.analyzer_deg = wrap_deg(edit.analyzer_deg + 5);
+      change();
+      break;
+    case Action::AnalyzerDown:
+      edit.analyzer_deg = wrap_deg(edit.analyzer_deg - 5);
+      change();
+      break;
+    case Action::ToggleAnalyzer:
+      edit.analyzer_in = !edit.analyzer_in;
+      change();
+      break;
     case Action::CrossPolars:
       edit.analyzer_in = true;
       edit.analyzer_deg = wrap_deg(edit.polarizer_deg + 90);
@@ -390,7 +417,10 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
       change();
       break;
     }
-    case Action::ToggleBertrand: edit.bertrand_in = !edit.bertrand_in; change(); break;
+    case Action::ToggleBertrand:
+      edit.bertrand_in = !edit.bertrand_in;
+      change();
+      break;
     case Action::CycleCompensator:
       edit.compensator = static_cast<Compensator>((static_cast<int>(edit.compensator) + 1) % 4);
       change();
@@ -405,7 +435,9 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
       edit.compensator_position = std::max(0.0, edit.compensator_position - 0.05);
       change();
       break;
-    case Action::Objective4: case Action::Objective10: case Action::Objective40:
+    case Action::Objective4:
+    case Action::Objective10:
+    case Action::Objective40:
     case Action::Objective50: {
       const auto& o = kObjectives[static_cast<int>(action) - static_cast<int>(Action::Objective4)];
       edit.objective.magnification = o.magnification;
@@ -417,12 +449,25 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
       edit.illuminant = edit.illuminant == Illuminant::D65 ? Illuminant::A : Illuminant::D65;
       change();
       break;
-    case Action::ToggleSample: edit.sample_in = !edit.sample_in; change(); break;
-    case Action::ToggleHelp: help_open_ = !help_open_; break;
-    case Action::ExportField: export_field(field_path_); break;
-    case Action::ExportWindow: request_window_screenshot(window_path_); break;
-    case Action::SaveScene: save_scene(scene_path_); break;
-    case Action::LoadScene: load_scene(scene_path_); break;
+    case Action::ToggleSample:
+      edit.sample_in = !edit.sample_in;
+      change();
+      break;
+    case Action::ToggleHelp:
+      help_open_ = !help_open_;
+      break;
+    case Action::ExportField:
+      export_field(field_path_);
+      break;
+    case Action::ExportWindow:
+      request_window_screenshot(window_path_);
+      break;
+    case Action::SaveScene:
+      save_scene(scene_path_);
+      break;
+    case Action::LoadScene:
+      load_scene(scene_path_);
+      break;
   }
 }
 

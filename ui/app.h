@@ -22,19 +22,19 @@
 namespace pmsim::ui {
 
 struct AppCounters {
-  std::uint64_t frames = 0;           // frames built
-  std::uint64_t uploads = 0;          // field texture uploads (new renderer snapshots)
-  std::uint64_t commits = 0;          // accepted scene changes
-  std::uint64_t rejected = 0;         // scene changes refused (error banner)
-  std::uint64_t failures = 0;         // errors shown in the banner (bad input, failed writes)
+  std::uint64_t frames = 0;    // frames built
+  std::uint64_t uploads = 0;   // field texture uploads (new renderer snapshots)
+  std::uint64_t commits = 0;   // accepted scene changes
+  std::uint64_t rejected = 0;  // scene changes refused (error banner)
+  std::uint64_t failures = 0;  // errors shown in the banner (bad input, failed writes)
   // Frames from an accepted change to the first frame showing an image of it (that frame
   // included: 1 = the change's own frame): summed over changes whose image was shown before the
   // next change, and the largest seen.
   std::uint64_t first_images = 0;
   std::uint64_t first_image_frames = 0;
   std::uint64_t first_image_frames_max = 0;
-  double frame_ms = 0.0;              // CPU time of the last frame() call
-  double fps = 0.0;                   // UI frames per second, smoothed (driver-measured)
+  double frame_ms = 0.0;  // CPU time of the last frame() call
+  double fps = 0.0;       // UI frames per second, smoothed (driver-measured)
 };
 
 class App {
@@ -51,9 +51,9 @@ class App {
   void set_measured_fps(double fps) { counters_.fps = fps; }
 
   // --- the one door for state changes -----------------------------------------------------
-  bool commit(const Scene& candidate);         // false: banner shown, last good scene kept
-  bool set(std::string_view assignment);       // "key=value" (scene keys), through commit()
-  void perform(Action action);                 // what a shortcut does
+  bool commit(const Scene& candidate);    // false: banner shown, last good scene kept
+  bool set(std::string_view assignment);  // "key=value" (scene keys), through commit()
+  void perform(Action action);            // what a shortcut does
   bool load_scene(const std::string& path);
   bool save_scene(const std::string& path);
   bool export_field(const std::string& path);  // .png (sRGB) or .exr/.tif (linear), scene in metadata
@@ -69,7 +69,7 @@ class App {
   // The image on screen is the converged image of the current scene.
   bool converged() const { return image_.converged && image_current_; }
   bool image_current() const { return image_current_; }  // on screen: an image of scene()
-  bool wait_rendered(double timeout_s) const;  // blocks (drivers/tests only, never in frame())
+  bool wait_rendered(double timeout_s) const;            // blocks (drivers/tests only, never in frame())
   const std::string& error() const { return error_; }
   void clear_error() { error_.clear(); }
   const Layout& layout() const { return layout_; }
@@ -93,20 +93,20 @@ class App {
   void fail(const std::string& message);
   void note(const std::string& message);
 
-  Scene scene_;                     // the last good scene: what the renderer is rendering
-  Scene previous_scene_;            // the one before, restored if the renderer refuses scene_
-  std::uint64_t generation_ = 0;    // counts accepted scenes (the feed's submission ids)
+  Scene scene_;                   // the last good scene: what the renderer is rendering
+  Scene previous_scene_;          // the one before, restored if the renderer refuses scene_
+  std::uint64_t generation_ = 0;  // counts accepted scenes (the feed's submission ids)
   std::unique_ptr<RenderFeed> feed_;
   RenderImage image_;
-  bool image_current_ = false;      // image_ belongs to scene_
+  bool image_current_ = false;                 // image_ belongs to scene_
   std::optional<std::uint64_t> change_frame_;  // counters_.frames at the last change not yet shown
   LinearTexture field_texture_;
   Layout layout_;
   int window_w_ = 1280, window_h_ = 800;
   AppCounters counters_;
 
-  std::string error_;               // banner text; "" = no banner
-  std::string notice_;              // last success message (exports, saves)
+  std::string error_;   // banner text; "" = no banner
+  std::string notice_;  // last success message (exports, saves)
   bool help_open_ = false;
   bool reticle_ = true;
   bool dragging_ = false;
@@ -118,7 +118,7 @@ class App {
   std::string field_path_ = "pmsim-field.png";
   std::string window_path_ = "pmsim-window.png";
 
-  struct Teaching;                  // cursor probe, chart and figure text (teaching_panel.cpp)
+  struct Teaching;  // cursor probe, chart and figure text (teaching_panel.cpp)
   std::unique_ptr<Teaching> teaching_;
 };
 

@@ -57,13 +57,20 @@ Options parse(int argc, char** argv) {
                "draw the window off-screen (EGL surfaceless, else OSMesa), no display needed");
   cli::add_repeatable(app, "--set", o.sets, "change a scene key (repeatable; keys as in pmsim-render)")
       ->type_name("key=value");
-  app.add_option("--frames", frames, "run N frames (windowed: then quit; headless: before settling, default 3)")->type_name("N");
-  app.add_option("--script", o.script, "replay user actions (format: assets/ui/README.md)")->type_name("FILE");
-  app.add_option("--screenshot", o.screenshot, "write the whole window as PNG at the end (headless: after convergence)")
+  app.add_option("--frames", frames,
+                 "run N frames (windowed: then quit; headless: before settling, default 3)")
+      ->type_name("N");
+  app.add_option("--script", o.script, "replay user actions (format: assets/ui/README.md)")
+      ->type_name("FILE");
+  app.add_option("--screenshot", o.screenshot,
+                 "write the whole window as PNG at the end (headless: after convergence)")
       ->type_name("FILE");
   bool no_settle = false;
-  app.add_flag("--no-settle", no_settle, "headless: do not wait for the image to converge before the screenshot");
-  app.add_option("--timeout", timeout, "headless: give up waiting for convergence after S seconds (default 600)")->type_name("S");
+  app.add_flag("--no-settle", no_settle,
+               "headless: do not wait for the image to converge before the screenshot");
+  app.add_option("--timeout", timeout,
+                 "headless: give up waiting for convergence after S seconds (default 600)")
+      ->type_name("S");
   app.add_option("--size", size, "window size (default 1280x800)")->type_name("WxH");
   app.add_option("--threads", threads, "renderer worker threads (default: all cores)")->type_name("N");
   app.add_flag("--report-fps", o.report_fps, "print the UI frame rate measured over the run");
@@ -88,9 +95,9 @@ Options parse(int argc, char** argv) {
 
 void report(const UiDriver& d) {
   const FrameTimes& t = d.frame_times();
-  std::printf("ui_fps=%.1f frames=%zu mean_ms=%.2f p50_ms=%.2f p95_ms=%.2f size=%dx%d gl=%s\n",
-              t.fps(), t.ms.size(), t.mean_ms(), t.percentile_ms(0.5), t.percentile_ms(0.95),
-              d.width(), d.height(), d.gl_name());
+  std::printf("ui_fps=%.1f frames=%zu mean_ms=%.2f p50_ms=%.2f p95_ms=%.2f size=%dx%d gl=%s\n", t.fps(),
+              t.ms.size(), t.mean_ms(), t.percentile_ms(0.5), t.percentile_ms(0.95), d.width(), d.height(),
+              d.gl_name());
 }
 
 }  // namespace

@@ -12,8 +12,7 @@ namespace pmsim::ui {
 namespace {
 
 bool slider_deg(const char* label, double& value_deg, double min_deg = 0, double max_deg = 360) {
-  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value_deg, &min_deg, &max_deg,
-                             "%.1f deg");
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value_deg, &min_deg, &max_deg, "%.1f deg");
 }
 
 bool slider_double(const char* label, double& value, double min, double max, const char* fmt,
@@ -25,8 +24,7 @@ bool input_text(const char* label, std::string& text) {
   char buffer[1024];
   std::strncpy(buffer, text.c_str(), sizeof buffer - 1);
   buffer[sizeof buffer - 1] = '\0';
-  const bool entered =
-      ImGui::InputText(label, buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool entered = ImGui::InputText(label, buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue);
   text = buffer;
   return entered;
 }
@@ -46,9 +44,11 @@ bool vec3_input(const char* label, std::array<double, 3>& v) {
                              ImGuiInputTextFlags_EnterReturnsTrue);
 }
 
-constexpr struct { const char* name; double magnification, na; } kObjectiveChoices[] = {
-    {"4x / 0.10", 4, 0.10}, {"10x / 0.25", 10, 0.25}, {"40x / 0.65", 40, 0.65},
-    {"50x / 0.85", 50, 0.85}};
+constexpr struct {
+  const char* name;
+  double magnification, na;
+} kObjectiveChoices[] = {
+    {"4x / 0.10", 4, 0.10}, {"10x / 0.25", 10, 0.25}, {"40x / 0.65", 40, 0.65}, {"50x / 0.85", 50, 0.85}};
 
 bool is_biaxial(const Scene& s) {
   if (s.sample.crystal) return !s.sample.crystal->uniaxial;
@@ -192,8 +192,10 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     }
   }
   if (ImGui::Checkbox("Custom crystal by indices", &custom)) {
-    if (custom) s.crystal = CrystalIndices{};
-    else s.crystal.reset();
+    if (custom)
+      s.crystal = CrystalIndices{};
+    else
+      s.crystal.reset();
     changed = true;
   }
   if (s.crystal) {
@@ -215,8 +217,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
   }
 
   const double max_um = s.type == SampleType::Wedge ? 500.0 : 200.0;
-  changed |= slider_double("Thickness", s.thickness_um, 0.5, max_um, "%.1f um",
-                           ImGuiSliderFlags_Logarithmic);
+  changed |= slider_double("Thickness", s.thickness_um, 0.5, max_um, "%.1f um", ImGuiSliderFlags_Logarithmic);
   ImGui::TextDisabled(s.type == SampleType::Wedge ? "(wedge: thickness at the right edge)" : " ");
 
   ImGui::Separator();
@@ -272,8 +273,8 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   ImGui::Separator();
   const RenderImage& im = image_;
   ImGui::Text("Render time   %.0f ms", im.time_ms);
-  ImGui::Text("Samples/pixel %.1f (%d wavelengths, %d passes)", im.samples_per_pixel,
-              im.wavelengths, im.passes);
+  ImGui::Text("Samples/pixel %.1f (%d wavelengths, %d passes)", im.samples_per_pixel, im.wavelengths,
+              im.passes);
   if (im.error_estimate)
     ImGui::Text("Error         %.2f dE00 %s", *im.error_estimate, im.converged ? "(converged)" : "");
   else
@@ -299,8 +300,7 @@ void App::draw_files_tab() {
   ImGui::TextUnformatted("Example scenes (assets/scenes)");
   ImGui::BeginChild("##scenes", ImVec2(0, 150), true);
   for (const auto& name : scenes)
-    if (ImGui::Selectable(name.c_str()))
-      load_scene(asset_dir() + "/scenes/" + name + ".json");
+    if (ImGui::Selectable(name.c_str())) load_scene(asset_dir() + "/scenes/" + name + ".json");
   ImGui::EndChild();
 
   ImGui::Separator();

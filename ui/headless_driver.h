@@ -12,8 +12,8 @@ namespace pmsim::ui {
 class HeadlessDriver : public UiDriver {
  public:
   // Null with the reasons in `log` if no off-screen GL context can be made.
-  static std::unique_ptr<HeadlessDriver> create(const Scene& scene, int width, int height,
-                                                std::string& log, int renderer_threads = 0);
+  static std::unique_ptr<HeadlessDriver> create(const Scene& scene, int width, int height, std::string& log,
+                                                int renderer_threads = 0);
   ~HeadlessDriver() override;
   const char* gl_name() const override { return context_->api_name(); }
   WindowPixels read_pixels() override { return {width_, height_, context_->read_rgb8()}; }

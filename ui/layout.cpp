@@ -14,8 +14,7 @@ Layout compute_layout(int window_width, int window_height) {
   l.teaching = {w - side, 0, side, h};
   l.view = {side, 0, w - 2 * side, h};
   const float status_h = 48, chart_h = std::clamp(h * 0.18f, 90.0f, 200.0f);
-  const float field_side = std::max(
-      64.0f, std::min(l.view.w - 2 * pad, h - status_h - chart_h - 4 * pad));
+  const float field_side = std::max(64.0f, std::min(l.view.w - 2 * pad, h - status_h - chart_h - 4 * pad));
   l.field = {l.view.x + (l.view.w - field_side) / 2, pad, field_side, field_side};
   l.status = {l.view.x + pad, l.field.y + field_side + pad, l.view.w - 2 * pad, status_h};
   l.chart = {l.view.x + pad, l.status.y + status_h + pad, l.view.w - 2 * pad,

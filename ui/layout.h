@@ -11,12 +11,12 @@ struct Rect {
 };
 
 struct Layout {
-  Rect controls;   // left: microscope controls
-  Rect view;       // centre: the field window
-  Rect field;      // the square the field image fills (a circular field stop inscribed in it)
-  Rect status;     // under the field: samples, error, frame time
-  Rect chart;      // under the status line: the Michel-Lévy chart
-  Rect teaching;   // right: cursor probe, figure description, shortcuts
+  Rect controls;  // left: microscope controls
+  Rect view;      // centre: the field window
+  Rect field;     // the square the field image fills (a circular field stop inscribed in it)
+  Rect status;    // under the field: samples, error, frame time
+  Rect chart;     // under the status line: the Michel-Lévy chart
+  Rect teaching;  // right: cursor probe, figure description, shortcuts
   float field_radius() const { return field.w / 2; }
 };
 

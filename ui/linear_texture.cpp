@@ -38,9 +38,7 @@ void LinearTexture::release() {
 }
 
 void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_linear) {
-  if (width <= 0 || height <= 0 ||
-      rgb_linear.size() < static_cast<size_t>(width) * height * 3)
-    return;
+  if (width <= 0 || height <= 0 || rgb_linear.size() < static_cast<size_t>(width) * height * 3) return;
   staging_.resize(static_cast<size_t>(width) * height * 4);
   for (size_t i = 0, n = static_cast<size_t>(width) * height; i < n; ++i) {
     staging_[4 * i + 0] = encode(rgb_linear[3 * i + 0]);
@@ -61,13 +59,11 @@ void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_
     g.BindTexture(GL_TEXTURE_2D, id_);
   }
   if (width != width_ || height != height_) {
-    g.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 staging_.data());
+    g.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, staging_.data());
     width_ = width;
     height_ = height;
   } else {
-    g.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
-                    staging_.data());
+    g.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, staging_.data());
   }
 }
 

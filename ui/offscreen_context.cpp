@@ -16,15 +16,12 @@ namespace {
 GlProc egl_proc(const char* name) { return reinterpret_cast<GlProc>(eglGetProcAddress(name)); }
 
 #if PMSIM_HAVE_OSMESA
-GlProc osmesa_proc(const char* name) {
-  return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));
-}
+GlProc osmesa_proc(const char* name) { return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name)); }
 #endif
 
 }  // namespace
 
-std::unique_ptr<OffscreenContext> OffscreenContext::create(int width, int height,
-                                                           std::string& log) {
+std::unique_ptr<OffscreenContext> OffscreenContext::create(int width, int height, std::string& log) {
   std::unique_ptr<OffscreenContext> ctx(new OffscreenContext());
   ctx->width_ = width;
   ctx->height_ = height;
@@ -36,8 +33,7 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(int width, int height
 }
 
 bool OffscreenContext::try_egl(std::string& log) {
-  EGLDisplay display =
-      eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   EGLint major = 0, minor = 0;
   if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) {
     log += "EGL: no surfaceless Mesa display\n";
@@ -48,8 +44,17 @@ bool OffscreenContext::try_egl(std::string& log) {
     eglTerminate(display);
     return false;
   }
-  const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_RED_SIZE, 8,
-                                   EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+  const EGLint config_attribs[] = {EGL_SURFACE_TYPE,
+                                   EGL_PBUFFER_BIT,
+                                   EGL_RENDERABLE_TYPE,
+                                   EGL_OPENGL_BIT,
+                                   EGL_RED_SIZE,
+                                   8,
+                                   EGL_GREEN_SIZE,
+                                   8,
+                                   EGL_BLUE_SIZE,
+                                   8,
+                                   EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count < 1) {
@@ -57,12 +62,15 @@ bool OffscreenContext::try_egl(std::string& log) {
     eglTerminate(display);
     return false;
   }
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                    3,
+                                    EGL_CONTEXT_MINOR_VERSION,
+                                    3,
                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                    EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
-  if (context == EGL_NO_CONTEXT ||
-      !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+  if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     log += "EGL: cannot create or bind a 3.3 core context without a surface\n";
     if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
     eglTerminate(display);
@@ -88,9 +96,17 @@ bool OffscreenContext::try_osmesa(std::string& log) {
     eglTerminate(egl_display_);
     egl_context_ = egl_display_ = nullptr;
   }
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         3,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         3,
+                         0};
   OSMesaContext context = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!context) {
     log += "OSMesa: cannot create a 3.3 core context\n";

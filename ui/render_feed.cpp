@@ -4,8 +4,7 @@
 
 namespace pmsim::ui {
 
-RenderFeed::RenderFeed(int renderer_threads)
-    : renderer_(renderer_threads), thread_([this] { run(); }) {}
+RenderFeed::RenderFeed(int renderer_threads) : renderer_(renderer_threads), thread_([this] { run(); }) {}
 
 RenderFeed::~RenderFeed() {
   {
@@ -69,22 +68,19 @@ std::optional<RenderFeed::Failure> RenderFeed::take_failure() {
 bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
   const bool changed = renderer_.snapshot(out);
   std::lock_guard<std::mutex> lock(mu_);
-  current = !busy_ && !pending_ && applied_id_ == submitted_id_ &&
-            out.generation == renderer_generation_;
+  current = !busy_ && !pending_ && applied_id_ == submitted_id_ && out.generation == renderer_generation_;
   return changed;
 }
 
 bool RenderFeed::wait(double timeout_s) const {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(std::min(timeout_s, 1e6)));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(std::min(timeout_s, 1e6)));
   {
     std::unique_lock<std::mutex> lock(mu_);
-    if (!cv_.wait_until(lock, deadline, [&] { return quit_ || (!busy_ && !pending_); }))
-      return false;
+    if (!cv_.wait_until(lock, deadline, [&] { return quit_ || (!busy_ && !pending_); })) return false;
   }
-  const double left =
-      std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+  const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
   return left > 0 && renderer_.wait(left);
 }
 

@@ -46,7 +46,7 @@ class RenderFeed {
   mutable std::mutex mu_;
   mutable std::condition_variable cv_;
   std::optional<std::pair<Scene, std::uint64_t>> pending_;
-  bool busy_ = false;                      // a restart is in progress
+  bool busy_ = false;  // a restart is in progress
   bool quit_ = false;
   std::uint64_t submitted_id_ = 0;         // id of the newest submission
   std::uint64_t applied_id_ = 0;           // id of the scene the renderer is rendering

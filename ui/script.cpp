@@ -13,17 +13,15 @@
 namespace pmsim::ui {
 namespace {
 
-
 struct Arity {
   int min, max;
 };
 const std::map<std::string, Arity>& verbs() {
   static const std::map<std::string, Arity> table = {
-      {"set", {1, 1}},        {"key", {1, 1}},        {"move", {2, 2}},
-      {"click", {2, 2}},      {"drag", {4, 5}},       {"turn-stage", {1, 2}},
-      {"probe", {2, 2}},      {"type", {1, 1}},       {"wait", {1, 2}},
-      {"screenshot", {1, 1}}, {"export", {1, 1}},     {"save", {1, 1}},
-      {"load", {1, 1}},       {"expect-error", {0, 0}}};
+      {"set", {1, 1}},  {"key", {1, 1}},         {"move", {2, 2}},   {"click", {2, 2}},
+      {"drag", {4, 5}}, {"turn-stage", {1, 2}},  {"probe", {2, 2}},  {"type", {1, 1}},
+      {"wait", {1, 2}}, {"screenshot", {1, 1}},  {"export", {1, 1}}, {"save", {1, 1}},
+      {"load", {1, 1}}, {"expect-error", {0, 0}}};
   return table;
 }
 
@@ -133,8 +131,8 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
       step(1);
     } else if (c.verb == "probe") {
       const Rect& f = app.layout().field;
-      driver.inject_mouse(f.x + static_cast<float>(num(0)) * f.w,
-                          f.y + static_cast<float>(num(1)) * f.h, false);
+      driver.inject_mouse(f.x + static_cast<float>(num(0)) * f.w, f.y + static_cast<float>(num(1)) * f.h,
+                          false);
       step(1);
     } else if (c.verb == "click") {
       const auto x = static_cast<float>(num(0)), y = static_cast<float>(num(1));
@@ -180,8 +178,7 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
         int frames = 0;
         if (!settle(driver, a.size() > 1 ? num(1) : 600.0, &frames)) {
           result.ok = false;
-          result.error = file + ": line " + std::to_string(c.line) +
-                         ": the image did not converge in time";
+          result.error = file + ": line " + std::to_string(c.line) + ": the image did not converge in time";
           return result;
         }
         result.frames += frames;

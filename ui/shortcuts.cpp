@@ -13,16 +13,15 @@ namespace {
 
 const std::vector<std::pair<const char*, int>>& named_keys() {
   static const std::vector<std::pair<const char*, int>> keys = {
-      {"Left", GLFW_KEY_LEFT}, {"Right", GLFW_KEY_RIGHT}, {"Up", GLFW_KEY_UP},
-      {"Down", GLFW_KEY_DOWN}, {"PageUp", GLFW_KEY_PAGE_UP}, {"PageDown", GLFW_KEY_PAGE_DOWN},
-      {"Home", GLFW_KEY_HOME}, {"End", GLFW_KEY_END}, {"Space", GLFW_KEY_SPACE},
-      {"Enter", GLFW_KEY_ENTER}, {"Escape", GLFW_KEY_ESCAPE}, {"Tab", GLFW_KEY_TAB},
-      {"Comma", GLFW_KEY_COMMA}, {"Period", GLFW_KEY_PERIOD},
-      {"F1", GLFW_KEY_F1}, {"F2", GLFW_KEY_F2}, {"F3", GLFW_KEY_F3}, {"F4", GLFW_KEY_F4},
+      {"Left", GLFW_KEY_LEFT},   {"Right", GLFW_KEY_RIGHT},    {"Up", GLFW_KEY_UP},
+      {"Down", GLFW_KEY_DOWN},   {"PageUp", GLFW_KEY_PAGE_UP}, {"PageDown", GLFW_KEY_PAGE_DOWN},
+      {"Home", GLFW_KEY_HOME},   {"End", GLFW_KEY_END},        {"Space", GLFW_KEY_SPACE},
+      {"Enter", GLFW_KEY_ENTER}, {"Escape", GLFW_KEY_ESCAPE},  {"Tab", GLFW_KEY_TAB},
+      {"Comma", GLFW_KEY_COMMA}, {"Period", GLFW_KEY_PERIOD},  {"F1", GLFW_KEY_F1},
+      {"F2", GLFW_KEY_F2},       {"F3", GLFW_KEY_F3},          {"F4", GLFW_KEY_F4},
   };
   return keys;
 }
-
 
 }  // namespace
 
@@ -42,8 +41,7 @@ const std::vector<Shortcut>& shortcuts() {
       {GLFW_KEY_C, false, false, Action::ToggleConoscopic,
        "orthoscopic / conoscopic (condenser lens + Bertrand)"},
       {GLFW_KEY_B, false, false, Action::ToggleBertrand, "Bertrand lens alone in / out"},
-      {GLFW_KEY_G, false, false, Action::CycleCompensator,
-       "compensator: none, gypsum, mica, quartz wedge"},
+      {GLFW_KEY_G, false, false, Action::CycleCompensator, "compensator: none, gypsum, mica, quartz wedge"},
       {GLFW_KEY_PERIOD, false, false, Action::WedgeIn, "push the quartz wedge in"},
       {GLFW_KEY_COMMA, false, false, Action::WedgeOut, "pull the quartz wedge out"},
       {GLFW_KEY_1, false, false, Action::Objective4, "objective 4x / 0.10"},
@@ -68,9 +66,12 @@ bool parse_key_chord(std::string_view text, int& key, bool& shift, bool& ctrl) {
     const auto plus = rest.find('+');
     if (plus == std::string::npos || plus + 1 == rest.size()) break;
     const std::string mod = lower_case(rest.substr(0, plus));
-    if (mod == "shift") shift = true;
-    else if (mod == "ctrl") ctrl = true;
-    else return false;
+    if (mod == "shift")
+      shift = true;
+    else if (mod == "ctrl")
+      ctrl = true;
+    else
+      return false;
     rest = rest.substr(plus + 1);
   }
   for (const auto& [name, code] : named_keys())

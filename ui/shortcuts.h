@@ -8,20 +8,40 @@
 namespace pmsim::ui {
 
 enum class Action {
-  StageCcw, StageCw, StageCcwCoarse, StageCwCoarse, StageZero,
-  PolarizerUp, PolarizerDown, AnalyzerUp, AnalyzerDown,
-  ToggleAnalyzer, CrossPolars, ToggleConoscopic, ToggleBertrand,
-  CycleCompensator, WedgeIn, WedgeOut,
-  Objective4, Objective10, Objective40, Objective50,
-  ToggleIlluminant, ToggleSample, ToggleHelp,
-  ExportField, ExportWindow, SaveScene, LoadScene,
+  StageCcw,
+  StageCw,
+  StageCcwCoarse,
+  StageCwCoarse,
+  StageZero,
+  PolarizerUp,
+  PolarizerDown,
+  AnalyzerUp,
+  AnalyzerDown,
+  ToggleAnalyzer,
+  CrossPolars,
+  ToggleConoscopic,
+  ToggleBertrand,
+  CycleCompensator,
+  WedgeIn,
+  WedgeOut,
+  Objective4,
+  Objective10,
+  Objective40,
+  Objective50,
+  ToggleIlluminant,
+  ToggleSample,
+  ToggleHelp,
+  ExportField,
+  ExportWindow,
+  SaveScene,
+  LoadScene,
 };
 
 struct Shortcut {
-  int key;          // GLFW_KEY_*
+  int key;  // GLFW_KEY_*
   bool shift, ctrl;
   Action action;
-  const char* what; // shown in the help panel
+  const char* what;  // shown in the help panel
 };
 
 const std::vector<Shortcut>& shortcuts();

@@ -29,12 +29,11 @@ void App::draw_chart() {
   if (!t.chart_job.valid() && (!t.chart_valid || !(t.chart_key == want))) {
     t.chart_job_key = want;
     t.chart_job = std::async(std::launch::async, [k = want] {
-      return michel_levy_chart_with_lines(k.width, k.height, Teaching::kChartMaxNm,
-                                          Teaching::kChartMaxUm, k.illuminant);
+      return michel_levy_chart_with_lines(k.width, k.height, Teaching::kChartMaxNm, Teaching::kChartMaxUm,
+                                          k.illuminant);
     });
   }
-  if (t.chart_job.valid() &&
-      t.chart_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+  if (t.chart_job.valid() && t.chart_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     t.chart_key = t.chart_job_key;
     t.chart_valid = true;  // also on failure: do not retry every frame; say why instead
     try {
@@ -48,8 +47,8 @@ void App::draw_chart() {
   ImGui::SetNextWindowSize(ImVec2(l.chart.w, l.chart.h));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   ImGui::Begin("##chart", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground);
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBackground);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   ImFont* font = ImGui::GetFont();
   const ImU32 text = IM_COL32(200, 200, 200, 255);
@@ -69,15 +68,14 @@ void App::draw_chart() {
   char titles[2][64], labels[2][128];
   std::snprintf(titles[0], sizeof titles[0], "Michel-Levy chart (%s), lines of dn",
                 illuminant_name(scene_.illuminant).data());
-  std::snprintf(titles[1], sizeof titles[1], "Michel-Levy (%s)",
-                illuminant_name(scene_.illuminant).data());
+  std::snprintf(titles[1], sizeof titles[1], "Michel-Levy (%s)", illuminant_name(scene_.illuminant).data());
   if (p.thickness_um > 0)
     std::snprintf(labels[0], sizeof labels[0], "probe: %.0f nm, order %.2f, %.1f um, dn %.4f%s",
-                  p.retardation_nm, p.order, p.thickness_um,
-                  p.retardation_nm / (1000.0 * p.thickness_um), off);
+                  p.retardation_nm, p.order, p.thickness_um, p.retardation_nm / (1000.0 * p.thickness_um),
+                  off);
   else
-    std::snprintf(labels[0], sizeof labels[0], "probe: %.0f nm, order %.2f%s", p.retardation_nm,
-                  p.order, off);
+    std::snprintf(labels[0], sizeof labels[0], "probe: %.0f nm, order %.2f%s", p.retardation_nm, p.order,
+                  off);
   std::snprintf(labels[1], sizeof labels[1], "%.0f nm, order %.2f", p.retardation_nm, p.order);
   const char* title = "";
   const char* probe_label = probed ? labels[1] : "";
@@ -151,8 +149,7 @@ void App::draw_chart() {
       }
     }
     const float w = ImGui::CalcTextSize(probe_label).x;
-    draw->AddText(ImVec2(l.chart.x + l.chart.w - w, l.chart.y), IM_COL32(255, 255, 255, 255),
-                  probe_label);
+    draw->AddText(ImVec2(l.chart.x + l.chart.w - w, l.chart.y), IM_COL32(255, 255, 255, 255), probe_label);
   }
   ImGui::End();
   ImGui::PopStyleVar();
@@ -167,8 +164,7 @@ void App::draw_teaching() {
                    ImGuiWindowFlags_NoSavedSettings);
   Teaching& t = *teaching_;
   // The probe follows the cursor over the field; elsewhere it stays where the cursor left it.
-  if (t.probe_job.valid() &&
-      t.probe_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+  if (t.probe_job.valid() && t.probe_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     Teaching::ProbeResult r = t.probe_job.get();
     t.probe = std::move(r.probe);
     t.probe_error = std::move(r.error);
@@ -201,11 +197,10 @@ void App::draw_teaching() {
     ImGui::Text("Retardation   %.0f nm", p.retardation_nm);
     ImGui::Text("Order         %.2f (order %d)", p.order, static_cast<int>(p.order) + 1);
     ImGui::TextUnformatted("Transmitted spectrum, 380-780 nm");
-    const float top = std::max(1.0f, t.spectrum.empty() ? 1.0f
-                                                      : *std::max_element(t.spectrum.begin(),
-                                                                          t.spectrum.end()));
-    ImGui::PlotLines("##spectrum", t.spectrum.data(), static_cast<int>(t.spectrum.size()), 0,
-                     nullptr, 0.0f, top, ImVec2(l.teaching.w - 20, 90));
+    const float top =
+        std::max(1.0f, t.spectrum.empty() ? 1.0f : *std::max_element(t.spectrum.begin(), t.spectrum.end()));
+    ImGui::PlotLines("##spectrum", t.spectrum.data(), static_cast<int>(t.spectrum.size()), 0, nullptr, 0.0f,
+                     top, ImVec2(l.teaching.w - 20, 90));
   }
   ImGui::Separator();
   if (t.figure_generation != generation_) {

@@ -41,8 +41,10 @@ void setup_imgui_style() {
   // Latin-1, Greek, punctuation, arrows and maths: the core's texts use Γ, µ, °, →, ⟂.
   static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x205E, 0x2190,
                                    0x21FF, 0x2200, 0x22FF, 0x27C0, 0x27EF, 0};
-  if (std::filesystem::exists(font, ec)) io.Fonts->AddFontFromFileTTF(font, 14.0f, nullptr, ranges);
-  else io.Fonts->AddFontDefault();
+  if (std::filesystem::exists(font, ec))
+    io.Fonts->AddFontFromFileTTF(font, 14.0f, nullptr, ranges);
+  else
+    io.Fonts->AddFontDefault();
 }
 
 bool UiDriver::init_imgui(const ImGuiGlBackend& backend, const Scene& scene, int renderer_threads,

@@ -54,12 +54,11 @@ class UiDriver {
   UiDriver() = default;
   // Creates the ImGui context, loads the font and style, initialises the renderer backend and
   // the App. The GL context must be current.
-  bool init_imgui(const ImGuiGlBackend& backend, const Scene& scene, int renderer_threads,
-                  std::string& log);
+  bool init_imgui(const ImGuiGlBackend& backend, const Scene& scene, int renderer_threads, std::string& log);
   void shutdown_imgui();
-  virtual bool begin_frame() = 0;       // events, platform new frame (DisplaySize, DeltaTime)
-  virtual void bind_target() = 0;       // framebuffer to draw into
-  virtual void end_frame() = 0;         // swap or finish
+  virtual bool begin_frame() = 0;  // events, platform new frame (DisplaySize, DeltaTime)
+  virtual void bind_target() = 0;  // framebuffer to draw into
+  virtual void end_frame() = 0;    // swap or finish
   virtual void framebuffer_size(int& w, int& h) const { w = width_, h = height_; }
 
   int width_ = 0, height_ = 0;
@@ -74,8 +73,8 @@ class UiDriver {
   bool mouse_injected_ = false;
   float mouse_x_ = 0, mouse_y_ = 0;
   bool mouse_down_ = false;
-  std::vector<int> keys_down_;        // held during the current frame
-  std::vector<int> keys_pending_;     // pressed on the next frame
+  std::vector<int> keys_down_;     // held during the current frame
+  std::vector<int> keys_pending_;  // pressed on the next frame
   bool shift_ = false, ctrl_ = false;
   bool mods_pending_shift_ = false, mods_pending_ctrl_ = false;
   std::string text_pending_;

@@ -12,8 +12,8 @@ namespace pmsim::ui {
 class WindowDriver : public UiDriver {
  public:
   // Null with the reason in `log` when there is no display or no 3.3 core context.
-  static std::unique_ptr<WindowDriver> create(const Scene& scene, int width, int height,
-                                              std::string& log, int renderer_threads = 0);
+  static std::unique_ptr<WindowDriver> create(const Scene& scene, int width, int height, std::string& log,
+                                              int renderer_threads = 0);
   ~WindowDriver() override;
   const char* gl_name() const override { return "GLFW window"; }
   WindowPixels read_pixels() override;

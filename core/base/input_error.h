@@ -7,13 +7,16 @@
 namespace pmsim {
 
 struct InputError : std::runtime_error {
-  std::string file;   // "" when the value came from the command line (--set)
-  std::string key;    // dot path, e.g. "sample.thickness_um"
-  std::string value;  // the value as the user wrote it
-  std::string reason; // why it was refused (what() without file, key and value)
+  std::string file;    // "" when the value came from the command line (--set)
+  std::string key;     // dot path, e.g. "sample.thickness_um"
+  std::string value;   // the value as the user wrote it
+  std::string reason;  // why it was refused (what() without file, key and value)
   InputError(std::string file_, std::string key_, std::string value_, const std::string& why)
       : std::runtime_error(compose(file_, key_, value_, why)),
-        file(std::move(file_)), key(std::move(key_)), value(std::move(value_)), reason(why) {}
+        file(std::move(file_)),
+        key(std::move(key_)),
+        value(std::move(value_)),
+        reason(why) {}
   // The same error showing `raw`, the value as the user typed it (validation after parsing only
   // knows the parsed number: 1e+06 for "1000000").
   InputError with_value(std::string raw) const { return InputError(file, key, std::move(raw), reason); }

@@ -34,8 +34,8 @@ bool Range::contains(double v) const {
 std::string Range::message() const {
   if (hi >= 1e308) return std::string(lo_open ? "must be > " : "must be ≥ ") + number_text(lo);
   if (lo <= -1e308) return std::string(hi_open ? "must be < " : "must be ≤ ") + number_text(hi);
-  return std::string("must be in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " +
-         number_text(hi) + (hi_open ? ")" : "]");
+  return std::string("must be in ") + (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
+         (hi_open ? ")" : "]");
 }
 
 double number_value(const json& v) {
@@ -192,9 +192,9 @@ std::optional<JsonReader> JsonReader::optional_object(std::string_view key) cons
 
 std::vector<JsonReader> JsonReader::objects(std::string_view key, std::size_t min_size) const {
   const json& v = required(key);
-  const std::string why = min_size > 0 ? "expected an array of at least " +
-                                             std::to_string(min_size) + " objects"
-                                       : "expected an array of objects";
+  const std::string why = min_size > 0
+                              ? "expected an array of at least " + std::to_string(min_size) + " objects"
+                              : "expected an array of objects";
   if (!v.is_array() || v.size() < min_size) fail(key, v, why);
   std::vector<JsonReader> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -225,8 +225,7 @@ void JsonReader::warn_unknown_keys(std::initializer_list<std::string_view> known
 }
 
 void JsonReader::refuse_unknown_keys(std::initializer_list<std::string_view> known) const {
-  for (const std::string& k : unknown_keys(known))
-    fail(k, j_->at(k), "unknown key");
+  for (const std::string& k : unknown_keys(known)) fail(k, j_->at(k), "unknown key");
 }
 
 void JsonReader::fail(std::string_view key, const json& value, const std::string& why) const {

@@ -82,12 +82,26 @@ E enum_value(const nlohmann::json& v, const NameTable<E>& names) {
   throw BadValue{"expected one of " + names.list()};
 }
 
-template <class T> T json_value(const nlohmann::json& v);
-template <> inline double json_value<double>(const nlohmann::json& v) { return number_value(v); }
-template <> inline int json_value<int>(const nlohmann::json& v) { return integer_value(v); }
-template <> inline bool json_value<bool>(const nlohmann::json& v) { return bool_value(v); }
-template <> inline std::string json_value<std::string>(const nlohmann::json& v) { return string_value(v); }
-template <> inline std::array<double, 3> json_value<std::array<double, 3>>(const nlohmann::json& v) {
+template <class T>
+T json_value(const nlohmann::json& v);
+template <>
+inline double json_value<double>(const nlohmann::json& v) {
+  return number_value(v);
+}
+template <>
+inline int json_value<int>(const nlohmann::json& v) {
+  return integer_value(v);
+}
+template <>
+inline bool json_value<bool>(const nlohmann::json& v) {
+  return bool_value(v);
+}
+template <>
+inline std::string json_value<std::string>(const nlohmann::json& v) {
+  return string_value(v);
+}
+template <>
+inline std::array<double, 3> json_value<std::array<double, 3>>(const nlohmann::json& v) {
   return vector3_value(v);
 }
 

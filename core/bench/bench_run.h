@@ -33,9 +33,9 @@ struct BenchRow {
   int width = 0, height = 0;
   double time_ms = 0.0, mean_de2000 = 0.0, p95_de2000 = 0.0, max_de2000 = 0.0;
   int wavelengths = 0;
-  double cpu_ms = 0.0;          // process CPU time (all threads) spent in the strategy: on a shared
-                                // machine, cpu_ms / cores estimates the unloaded wall time
-  std::string code;             // "product" (the renderer) or "bench-side"
+  double cpu_ms = 0.0;  // process CPU time (all threads) spent in the strategy: on a shared
+                        // machine, cpu_ms / cores estimates the unloaded wall time
+  std::string code;     // "product" (the renderer) or "bench-side"
   double renderer_estimate = -1.0;
   std::string model_report;
 };
@@ -44,7 +44,7 @@ struct SceneReferenceInfo {
   std::string scene, description, cache_file;
   double time_ms = 0.0;
   bool from_cache = false;
-  double half_vs_full_mean_de2000 = 0.0;   // reference convergence check
+  double half_vs_full_mean_de2000 = 0.0;  // reference convergence check
 };
 
 struct BenchReport {
@@ -55,7 +55,7 @@ struct BenchReport {
   std::optional<ProcessStartResult> process_start;
   std::vector<std::string> notes;
   double total_s = 0.0;
-  double load_average = 0.0;    // 1-minute load average at the end of the run (/proc/loadavg)
+  double load_average = 0.0;  // 1-minute load average at the end of the run (/proc/loadavg)
   int cores = 0;
 };
 

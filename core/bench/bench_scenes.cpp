@@ -24,8 +24,8 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
     s.sample.thickness_um = 30.0;
     s.sample.optic_axis = {1, 0, 0};
     s.stage_deg = 45.0;
-    out.push_back({"quartz-30um-45deg-ortho", "quartz 30 µm, optic axis in the stage plane at 45°, crossed polars", s,
-                   false, false});
+    out.push_back({"quartz-30um-45deg-ortho",
+                   "quartz 30 µm, optic axis in the stage plane at 45°, crossed polars", s, false, false});
   }
   {  // A thin section of grains (granite preferred).
     std::string section;
@@ -51,8 +51,10 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
       s.sample.section = section;
       s.sample.thickness_um = 30.0;
       s.stage_deg = 20.0;
-      out.push_back({"section-ortho", "thin section '" + std::filesystem::path(section).stem().string() +
-                                          "' 30 µm, crossed polars, stage 20°", s, false, false});
+      out.push_back({"section-ortho",
+                     "thin section '" + std::filesystem::path(section).stem().string() +
+                         "' 30 µm, crossed polars, stage 20°",
+                     s, false, false});
     } else if (notes) {
       notes->push_back("no thin section in assets/sections yet: the section-ortho scene is skipped");
     }
@@ -64,7 +66,8 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
   cono.condenser.na = 0.9;
   // Calcite 1 mm ⟂ c at NA 0.85 (condenser 0.9), the shipped scene, with the bench's size and
   // ideal lenses like every other bench scene.
-  Scene calcite = load_scene_file((std::filesystem::path(asset_dir()) / "scenes" / "calcite_cono.json").string());
+  Scene calcite =
+      load_scene_file((std::filesystem::path(asset_dir()) / "scenes" / "calcite_cono.json").string());
   calcite.render.width = calcite.render.height = size;
   calcite.optics.lens_model = LensModel::Ideal;
   // The uniaxial cross with many dense isochromes (Γ ≈ 0.17 mm at the edge).
@@ -77,15 +80,15 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
     s.sample.x_axis = {0, 0, 1};
     s.sample.z_axis = {1, 0, 0};
     s.stage_deg = 45.0;
-    out.push_back({"muscovite-bxa-cono", "muscovite 40 µm, acute bisectrix ⟂ stage, stage 45°, NA 0.85", s, true,
-                   false});
+    out.push_back({"muscovite-bxa-cono", "muscovite 40 µm, acute bisectrix ⟂ stage, stage 45°, NA 0.85", s,
+                   true, false});
   }
   {  // The calcite figure with the physical (SML) condenser, objective and Bertrand lens.
     Scene s = calcite;
     s.optics.lens_model = LensModel::Physical;
     s.optics.lens_depth = 3;
-    out.push_back({"calcite-1mm-cono-physical", "calcite 1 mm ⟂ c, SML lenses with internal reflections (dT = 3)",
-                   s, true, true});
+    out.push_back({"calcite-1mm-cono-physical",
+                   "calcite 1 mm ⟂ c, SML lenses with internal reflections (dT = 3)", s, true, true});
   }
   return out;
 }

@@ -13,7 +13,7 @@ struct BenchScene {
   std::string description;
   Scene scene;
   bool conoscopic = false;
-  bool physical_lenses = false;   // the lens-model strategies (dT, Fresnel/Schlick) apply
+  bool physical_lenses = false;  // the lens-model strategies (dT, Fresnel/Schlick) apply
 };
 
 // size: image width = height in pixels. A thin-section scene is included only when a section

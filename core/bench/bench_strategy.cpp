@@ -47,7 +47,8 @@ double exact_transmission(const EvaluationPlan& plan, const EvalUnit& unit, doub
   double t = 0.0;
   // Condenser and objective as the renderer has them (aplanatic frame; physical s/p if chosen).
   if (!dom.crystal || unit.thickness_um <= 0.0) {
-    for (int d = 0; d < D; ++d) t += jones_transmission(train, plan.with_lenses(JonesMatrix::identity(), plan.dir(unit, d)));
+    for (int d = 0; d < D; ++d)
+      t += jones_transmission(train, plan.with_lenses(JonesMatrix::identity(), plan.dir(unit, d)));
     return t / D;
   }
   PreparedPlate p = plan.prepare(unit.domain, nm);
@@ -80,7 +81,8 @@ glm::dvec3 bench_side_unit(const EvaluationPlan& plan, const BenchStrategy& st, 
   }
   glm::dvec3 xyz(0.0);
   for (int i = 0; i < w.size(); ++i)
-    xyz += observer_weight(plan.scene().illuminant, w.nm[i]) * (w.weight_nm[i] * exact_transmission(plan, unit, w.nm[i]));
+    xyz += observer_weight(plan.scene().illuminant, w.nm[i]) *
+           (w.weight_nm[i] * exact_transmission(plan, unit, w.nm[i]));
   return xyz;
 }
 
@@ -91,9 +93,11 @@ StrategyResult run_bench_side(const Scene& scene, const BenchStrategy& st) {
   sc.render.strategy = RenderStrategy::Exact;  // no modal fit: the set-up only provides geometry
   const auto plan = compile_evaluation_plan(sc);
   std::vector<glm::dvec3> units(plan->units().size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64), [&](const tbb::blocked_range<std::size_t>& b) {
-    for (std::size_t u = b.begin(); u != b.end(); ++u) units[u] = bench_side_unit(*plan, st, u);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& b) {
+                      for (std::size_t u = b.begin(); u != b.end(); ++u)
+                        units[u] = bench_side_unit(*plan, st, u);
+                    });
   RenderImage img;
   develop_image(*plan, units, false, img);
   r.time_ms = ms_since(t0);
@@ -157,9 +161,14 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
     product("renderer-physical-schlick", {"optics.lens_model=physical", "optics.schlick=true"});
     product("renderer-auto-lenses", {"optics.lens_model=auto"});
     for (int dT : quick ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 5})
-      v.push_back({"sml-dT" + std::to_string(dT), K::PhysicalLens,
-                   {"optics.lens_depth=" + std::to_string(dT), "render.wavelengths=128"}, 0});
-    v.push_back({"sml-dT3-schlick", K::PhysicalLens, {"optics.lens_depth=3", "optics.schlick=true", "render.wavelengths=128"}, 0});
+      v.push_back({"sml-dT" + std::to_string(dT),
+                   K::PhysicalLens,
+                   {"optics.lens_depth=" + std::to_string(dT), "render.wavelengths=128"},
+                   0});
+    v.push_back({"sml-dT3-schlick",
+                 K::PhysicalLens,
+                 {"optics.lens_depth=3", "optics.schlick=true", "render.wavelengths=128"},
+                 0});
     return v;
   }
   product("uniform-81", {"render.strategy=exact", "render.wavelengths=81"});
@@ -173,7 +182,8 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
   for (int n : quick ? std::vector<int>{8} : std::vector<int>{4, 8, 16})
     v.push_back({"hero-" + std::to_string(n), K::Hero, {}, n});
   for (int n : quick ? std::vector<int>{8, 32} : std::vector<int>{4, 8, 16, 32, 64})
-    product("modal-" + std::to_string(n), {"render.strategy=modal", "render.wavelengths=" + std::to_string(n)});
+    product("modal-" + std::to_string(n),
+            {"render.strategy=modal", "render.wavelengths=" + std::to_string(n)});
   product("auto", {"render.strategy=auto"});
   v.push_back({"first-pass", K::FirstPass, {"render.strategy=auto"}, 0});
   v.push_back({"second-pass", K::SecondPass, {"render.strategy=auto"}, 0});

@@ -2,9 +2,9 @@
 // The ways of rendering a bench scene that pmsim-bench compares. "Product" strategies call the
 // renderer itself (ProgressiveRenderer with scene settings); "bench-side" ones are spectral
 // sampling schemes the renderer does not offer (RGB, stratified and hero wavelengths per pixel),
-// evaluated here on the renderer's own evaluation plan (compile_evaluation_plan: domains, units, pixel references) and
-// the crystal's exact Jones matrix, then developed with the renderer's develop_image, so that only
-// the choice of wavelengths differs.
+// evaluated here on the renderer's own evaluation plan (compile_evaluation_plan: domains, units, pixel
+// references) and the crystal's exact Jones matrix, then developed with the renderer's develop_image, so that
+// only the choice of wavelengths differs.
 #include <string>
 #include <vector>
 
@@ -13,13 +13,13 @@
 namespace pmsim {
 
 enum class StrategyKind {
-  Product,        // ProgressiveRenderer::render of the scene with `settings` applied
-  FirstPass,      // the first progressive pass of ProgressiveRenderer (interactive preview)
-  SecondPass,     // its second pass (for a large field: the 1/4-resolution preview after the glance)
-  Rgb,            // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
-  Stratified,     // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
-  Hero,           // bench-side: hero wavelength + n−1 equally spaced companions, per unit
-  PhysicalLens,   // bench-side: condenser and objective as SML lenses (physical_lens_model.h)
+  Product,       // ProgressiveRenderer::render of the scene with `settings` applied
+  FirstPass,     // the first progressive pass of ProgressiveRenderer (interactive preview)
+  SecondPass,    // its second pass (for a large field: the 1/4-resolution preview after the glance)
+  Rgb,           // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
+  Stratified,    // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
+  Hero,          // bench-side: hero wavelength + n−1 equally spaced companions, per unit
+  PhysicalLens,  // bench-side: condenser and objective as SML lenses (physical_lens_model.h)
 };
 
 struct BenchStrategy {
@@ -28,7 +28,8 @@ struct BenchStrategy {
   std::vector<std::string> settings;  // "key=value" applied to the scene first
   int wavelengths = 0;                // bench-side sample count
   bool product() const {
-    return kind == StrategyKind::Product || kind == StrategyKind::FirstPass || kind == StrategyKind::SecondPass;
+    return kind == StrategyKind::Product || kind == StrategyKind::FirstPass ||
+           kind == StrategyKind::SecondPass;
   }
 };
 

@@ -60,11 +60,17 @@ struct Family {
   std::uint8_t colour[3];
 };
 constexpr Family kFamilies[] = {
-    {"uniform", "uniform (exact, n bands)", {31, 119, 180}}, {"rgb", "RGB 3 wavelengths", {214, 39, 40}},
-    {"stratified", "stratified per pixel", {255, 127, 14}}, {"hero", "hero wavelength", {148, 103, 189}},
-    {"modal", "modal fit, n bands", {44, 160, 44}},         {"auto", "renderer auto (converged)", {0, 0, 0}},
-    {"first-pass", "first progressive pass", {140, 86, 75}}, {"second-pass", "second progressive pass", {196, 156, 148}}, {"reference", "reference, half samples", {127, 127, 127}},
-    {"ideal", "ideal lenses", {23, 190, 207}},              {"sml", "bench SML lenses dT / Schlick", {188, 189, 34}},
+    {"uniform", "uniform (exact, n bands)", {31, 119, 180}},
+    {"rgb", "RGB 3 wavelengths", {214, 39, 40}},
+    {"stratified", "stratified per pixel", {255, 127, 14}},
+    {"hero", "hero wavelength", {148, 103, 189}},
+    {"modal", "modal fit, n bands", {44, 160, 44}},
+    {"auto", "renderer auto (converged)", {0, 0, 0}},
+    {"first-pass", "first progressive pass", {140, 86, 75}},
+    {"second-pass", "second progressive pass", {196, 156, 148}},
+    {"reference", "reference, half samples", {127, 127, 127}},
+    {"ideal", "ideal lenses", {23, 190, 207}},
+    {"sml", "bench SML lenses dT / Schlick", {188, 189, 34}},
     {"renderer-", "renderer physical lenses", {227, 119, 194}},
 };
 
@@ -107,7 +113,8 @@ void RgbCanvas::text(int x, int y, const std::string& s, const std::uint8_t c[3]
     if (const Glyph* g = glyph(ch))
       for (int r = 0; r < 7; ++r)
         for (int col = 0; col < 5; ++col)
-          if (g->rows[r] & (0x10 >> col)) rect(x + col * scale, y + r * scale, x + (col + 1) * scale - 1, y + (r + 1) * scale - 1, c, true);
+          if (g->rows[r] & (0x10 >> col))
+            rect(x + col * scale, y + r * scale, x + (col + 1) * scale - 1, y + (r + 1) * scale - 1, c, true);
     x += 6 * scale;
   }
 }
@@ -127,18 +134,26 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
     emax = std::max(emax, std::max(r.mean_de2000, 1e-3));
   }
   if (rep.rows.empty()) tmin = 1, tmax = 10, emin = 0.01, emax = 10;
-  const int tx0 = static_cast<int>(std::floor(std::log10(tmin))), tx1 = std::max(tx0 + 1, static_cast<int>(std::ceil(std::log10(tmax))));
-  const int ey0 = static_cast<int>(std::floor(std::log10(emin))), ey1 = std::max(ey0 + 1, static_cast<int>(std::ceil(std::log10(emax))));
-  auto X = [&](double t) { return left + static_cast<int>((std::log10(std::max(t, 0.01)) - tx0) / (tx1 - tx0) * (right - left)); };
-  auto Y = [&](double e) { return bottom - static_cast<int>((std::log10(std::max(e, 1e-3)) - ey0) / (ey1 - ey0) * (bottom - top)); };
+  const int tx0 = static_cast<int>(std::floor(std::log10(tmin))),
+            tx1 = std::max(tx0 + 1, static_cast<int>(std::ceil(std::log10(tmax))));
+  const int ey0 = static_cast<int>(std::floor(std::log10(emin))),
+            ey1 = std::max(ey0 + 1, static_cast<int>(std::ceil(std::log10(emax))));
+  auto X = [&](double t) {
+    return left + static_cast<int>((std::log10(std::max(t, 0.01)) - tx0) / (tx1 - tx0) * (right - left));
+  };
+  auto Y = [&](double e) {
+    return bottom - static_cast<int>((std::log10(std::max(e, 1e-3)) - ey0) / (ey1 - ey0) * (bottom - top));
+  };
   for (int d = tx0; d <= tx1; ++d) {
     cv.line(X(std::pow(10.0, d)), top, X(std::pow(10.0, d)), bottom, kGrey);
-    const std::string s = d >= 0 ? std::to_string(static_cast<long>(std::pow(10.0, d))) : "0." + std::string(-d - 1, '0') + "1";
+    const std::string s =
+        d >= 0 ? std::to_string(static_cast<long>(std::pow(10.0, d))) : "0." + std::string(-d - 1, '0') + "1";
     cv.text(X(std::pow(10.0, d)) - RgbCanvas::text_width(s) / 2, bottom + 8, s, kBlack);
   }
   for (int d = ey0; d <= ey1; ++d) {
     cv.line(left, Y(std::pow(10.0, d)), right, Y(std::pow(10.0, d)), kGrey);
-    const std::string s = d >= 0 ? std::to_string(static_cast<long>(std::pow(10.0, d))) : "0." + std::string(-d - 1, '0') + "1";
+    const std::string s =
+        d >= 0 ? std::to_string(static_cast<long>(std::pow(10.0, d))) : "0." + std::string(-d - 1, '0') + "1";
     cv.text(left - 8 - RgbCanvas::text_width(s), Y(std::pow(10.0, d)) - 3, s, kBlack);
   }
   // Targets: ΔE = 1 and 5, 16 ms and 33 ms.
@@ -147,9 +162,12 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
   for (double t : {16.0, 33.0})
     if (std::log10(t) >= tx0 && std::log10(t) <= tx1) cv.line(X(t), top, X(t), bottom, kDark, true);
   cv.rect(left, top, right, bottom, kBlack, false);
-  cv.text(left, 12, "PMSIM-BENCH: TIME VS MEAN CIEDE2000 (" + std::to_string(rep.options.size) + "X" +
-                        std::to_string(rep.options.size) + ")", kBlack, 2);
-  cv.text((left + right) / 2 - RgbCanvas::text_width("WALL TIME (MS), LOG") / 2, bottom + 26, "WALL TIME (MS), LOG", kBlack);
+  cv.text(left, 12,
+          "PMSIM-BENCH: TIME VS MEAN CIEDE2000 (" + std::to_string(rep.options.size) + "X" +
+              std::to_string(rep.options.size) + ")",
+          kBlack, 2);
+  cv.text((left + right) / 2 - RgbCanvas::text_width("WALL TIME (MS), LOG") / 2, bottom + 26,
+          "WALL TIME (MS), LOG", kBlack);
   cv.text(6, top - 14, "MEAN DE2000, LOG", kBlack);
   // Scenes → marker shapes.
   std::map<std::string, int> scene_index;
@@ -161,7 +179,9 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
           for (int dx = -4; dx <= 4; ++dx)
             if (dx * dx + dy * dy <= 16) cv.set(x + dx, y + dy, c);
         break;
-      case 1: cv.rect(x - 4, y - 4, x + 4, y + 4, c, true); break;
+      case 1:
+        cv.rect(x - 4, y - 4, x + 4, y + 4, c, true);
+        break;
       case 2:  // triangle
         for (int dy = -4; dy <= 4; ++dy)
           for (int dx = -(dy + 4) / 2; dx <= (dy + 4) / 2; ++dx) cv.set(x + dx, y + dy, c);
@@ -172,12 +192,14 @@ RgbCanvas frontier_plot(const BenchReport& rep, int W, int H) {
         break;
       default:  // cross
         for (int d = -5; d <= 5; ++d) {
-          cv.set(x + d, y + d, c), cv.set(x + d, y - d, c), cv.set(x + d + 1, y + d, c), cv.set(x + d + 1, y - d, c);
+          cv.set(x + d, y + d, c), cv.set(x + d, y - d, c), cv.set(x + d + 1, y + d, c),
+              cv.set(x + d + 1, y - d, c);
         }
     }
   };
   for (const BenchRow& r : rep.rows)
-    if (r.time_ms > 0.0) marker(X(r.time_ms), Y(r.mean_de2000), scene_index[r.scene], family_of(r.strategy).colour);
+    if (r.time_ms > 0.0)
+      marker(X(r.time_ms), Y(r.mean_de2000), scene_index[r.scene], family_of(r.strategy).colour);
   // Legend.
   int ly = top;
   const int lx = right + 16;

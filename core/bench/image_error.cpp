@@ -17,15 +17,16 @@ ImageError image_error_de2000(const std::vector<float>& a, const std::vector<flo
     throw std::invalid_argument("image_error_de2000: image sizes differ");
   const std::size_t n = a.size() / 3;
   std::vector<double> de(n, -1.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (!lit.empty() && !lit[i]) continue;
-      const glm::dvec3 xa(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
-      const glm::dvec3 xb(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
-      const double d = ciede2000(xyz_to_lab(xa, white), xyz_to_lab(xb, white));
-      de[i] = std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        if (!lit.empty() && !lit[i]) continue;
+                        const glm::dvec3 xa(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+                        const glm::dvec3 xb(b[3 * i], b[3 * i + 1], b[3 * i + 2]);
+                        const double d = ciede2000(xyz_to_lab(xa, white), xyz_to_lab(xb, white));
+                        de[i] = std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
+                      }
+                    });
   de.erase(std::remove(de.begin(), de.end(), -1.0), de.end());
   ImageError e;
   e.pixels = de.size();

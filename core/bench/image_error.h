@@ -11,9 +11,9 @@ namespace pmsim {
 
 struct ImageError {
   double mean_de2000 = 0.0;
-  double p95_de2000 = 0.0;   // 95th percentile
+  double p95_de2000 = 0.0;  // 95th percentile
   double max_de2000 = 0.0;
-  std::size_t pixels = 0;    // lit pixels compared
+  std::size_t pixels = 0;  // lit pixels compared
 };
 
 // xyz_*: width·height·3 floats (CIE XYZ, Y = 1 white). lit: width·height bytes, non-zero for a

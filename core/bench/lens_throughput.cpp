@@ -63,8 +63,8 @@ void set_ray(RTCRayHit& rh, const Ray& r) {
 RTCGeometry sphere_mesh(RTCDevice dev, double R, int rings, int segments) {
   RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
   const int nv = (rings + 1) * segments;
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), nv));
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
   for (int i = 0; i <= rings; ++i)
     for (int j = 0; j < segments; ++j) {
       const double th = kPi * i / rings, ph = 2 * kPi * j / segments;
@@ -96,7 +96,8 @@ RTCGeometry lens_mesh(RTCDevice dev, const LensGeometry& L, int rings, int segme
     for (int i = 0; i <= rings; ++i)
       for (int j = 0; j < segments; ++j) {
         const double r = rho * i / rings, ph = 2 * kPi * j / segments;
-        v.insert(v.end(), {float(r * std::cos(ph)), float(r * std::sin(ph)), float(z_vertex + cap_sag_mm(R, r))});
+        v.insert(v.end(),
+                 {float(r * std::cos(ph)), float(r * std::sin(ph)), float(z_vertex + cap_sag_mm(R, r))});
       }
     for (int i = 0; i < rings; ++i)
       for (int j = 0; j < segments; ++j) {
@@ -164,7 +165,8 @@ void fill_packet(RayHitN& p, const Ray* r, int valid[N]) {
 }
 
 template <int N, class RayHitN, class Fn>
-ThroughputResult time_packets(const std::string& name, RTCScene scene, const std::vector<Ray>& rays, Fn intersect) {
+ThroughputResult time_packets(const std::string& name, RTCScene scene, const std::vector<Ray>& rays,
+                              Fn intersect) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(64) RayHitN p;
@@ -251,14 +253,17 @@ std::vector<ThroughputResult> measure_lens_throughput(int n) {
     const auto rays = incoherent_rays(n, glm::dvec3(0.0), 1.0, rng);
     out.push_back(time_intersect1("Embree rtcIntersect1, sphere 262k tris", sc, rays));
     if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED))
-      out.push_back(time_packets<4, RTCRayHit4>("Embree rtcIntersect4, sphere 262k tris", sc, rays,
-                                                [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit4* p) { rtcIntersect4(v, s, c, p); }));
+      out.push_back(time_packets<4, RTCRayHit4>(
+          "Embree rtcIntersect4, sphere 262k tris", sc, rays,
+          [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit4* p) { rtcIntersect4(v, s, c, p); }));
     if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED))
-      out.push_back(time_packets<8, RTCRayHit8>("Embree rtcIntersect8, sphere 262k tris", sc, rays,
-                                                [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit8* p) { rtcIntersect8(v, s, c, p); }));
+      out.push_back(time_packets<8, RTCRayHit8>(
+          "Embree rtcIntersect8, sphere 262k tris", sc, rays,
+          [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit8* p) { rtcIntersect8(v, s, c, p); }));
     if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED))
-      out.push_back(time_packets<16, RTCRayHit16>("Embree rtcIntersect16, sphere 262k tris", sc, rays,
-                                                  [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit16* p) { rtcIntersect16(v, s, c, p); }));
+      out.push_back(time_packets<16, RTCRayHit16>(
+          "Embree rtcIntersect16, sphere 262k tris", sc, rays,
+          [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit16* p) { rtcIntersect16(v, s, c, p); }));
     rtcReleaseScene(sc);
   }
   rtcReleaseDevice(dev);

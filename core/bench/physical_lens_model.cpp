@@ -38,7 +38,7 @@ struct CMat2 {  // columns: response to input basis vector 0 and 1
 };
 
 struct ObjectivePath {
-  CMat2 jones;        // sample transverse basis of k → exit transverse basis
+  CMat2 jones;                               // sample transverse basis of k → exit transverse basis
   double bfp_r_mm = 0.0, bfp_azimuth = 0.0;  // where the exit ray crosses the back-focal plane
   bool main = false;
 };
@@ -234,7 +234,8 @@ BfpHeightTable bfp_height_table(const Optics& optics, double objective_na, int w
 std::vector<long> pixel_of_units(const EvaluationPlan& plan) {
   std::vector<long> pixel_of_unit(plan.units().size(), -1);
   for (long i = 0; i < static_cast<long>(plan.width()) * plan.height(); ++i)
-    for (int ref = plan.pixel_offset()[i]; ref < plan.pixel_offset()[i + 1]; ++ref) pixel_of_unit[plan.refs()[ref].unit] = i;
+    for (int ref = plan.pixel_offset()[i]; ref < plan.pixel_offset()[i + 1]; ++ref)
+      pixel_of_unit[plan.refs()[ref].unit] = i;
   return pixel_of_unit;
 }
 
@@ -279,8 +280,8 @@ DetectedOutputs detected_outputs(const Scene& scene) {
 // by its mode transmission and the objective path; fast mode phase −φ/2, slow +φ/2, so
 // |c1 e^{−iφ/2} + c2 e^{iφ/2}|² = |c1|² + |c2|² + 2 Re(c1 c2* e^{−iφ}), the cross term averaged
 // over the band Δλ: × sinc(½ dφ/dλ · Δλ), φ = 2π Γ/λ.
-double crystal_band_intensity(const ModalPoint& m, const CVec2& e_s, const CMat2& path_jones, double wavelength_nm,
-                              double band_nm, const DetectedOutputs& outputs) {
+double crystal_band_intensity(const ModalPoint& m, const CVec2& e_s, const CMat2& path_jones,
+                              double wavelength_nm, double band_nm, const DetectedOutputs& outputs) {
   glm::dvec2 e1 = m.e1, e2 = m.e2;
   double det = e1.x * e2.y - e1.y * e2.x;
   if (std::fabs(det) < 1e-9) {
@@ -327,7 +328,8 @@ struct UnitScratch {
 
 // The light of unit u (one condenser direction k) through every objective path, added to the
 // pixel where each path lands, in XYZ relative to the axial transmission.
-void add_unit_light(const BenchInputs& in, std::size_t u, UnitScratch& scratch, std::vector<glm::dvec3>& img) {
+void add_unit_light(const BenchInputs& in, std::size_t u, UnitScratch& scratch,
+                    std::vector<glm::dvec3>& img) {
   const EvalUnit& unit = in.plan.units()[u];
   if (in.pixel_of_unit[u] < 0) return;
   CMat2 condenser;
@@ -347,7 +349,8 @@ void add_unit_light(const BenchInputs& in, std::size_t u, UnitScratch& scratch, 
       double t = 0.0;
       if (!crystal) {
         const CVec2 e = path.jones * e_s;
-        for (int o = 0; o < in.outputs.count; ++o) t += std::norm(in.outputs.dir[o].x * e.x + in.outputs.dir[o].y * e.y);
+        for (int o = 0; o < in.outputs.count; ++o)
+          t += std::norm(in.outputs.dir[o].x * e.x + in.outputs.dir[o].y * e.y);
       } else {
         t = crystal_band_intensity(fit.at(L.nm[i], scale), e_s, path.jones, L.nm[i], L.band_nm, in.outputs);
       }
@@ -374,27 +377,32 @@ StrategyResult render_physical_lens_model(const Scene& scene_in) {
   const std::vector<long> pixel_of_unit = pixel_of_units(*plan);
   const glm::dvec2 pol = polarizer_direction(scene.polarizer_deg);
   const DetectedOutputs outputs = detected_outputs(scene);
-  const BenchInputs in{*plan, L, optics, anchors, bfp, pixel_of_unit, CVec2{pol.x, pol.y}, outputs, axial_intensity(optics)};
+  const BenchInputs in{
+      *plan, L, optics, anchors, bfp, pixel_of_unit, CVec2{pol.x, pol.y}, outputs, axial_intensity(optics)};
 
   // One image per thread (ghosts land on other units' pixels), summed afterwards.
   tbb::enumerable_thread_specific<std::vector<glm::dvec3>> acc(
       [&] { return std::vector<glm::dvec3>(static_cast<std::size_t>(W) * H, glm::dvec3(0.0)); });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plan->units().size(), 32), [&](const tbb::blocked_range<std::size_t>& range) {
-    auto& img = acc.local();
-    UnitScratch scratch;
-    for (std::size_t u = range.begin(); u != range.end(); ++u) add_unit_light(in, u, scratch, img);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plan->units().size(), 32),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      auto& img = acc.local();
+                      UnitScratch scratch;
+                      for (std::size_t u = range.begin(); u != range.end(); ++u)
+                        add_unit_light(in, u, scratch, img);
+                    });
   std::vector<glm::dvec3> sum(static_cast<std::size_t>(W) * H, glm::dvec3(0.0));
   for (const auto& img : acc)
     for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += img[i];
   StrategyResult r;
   r.xyz.resize(sum.size() * 3);
   for (std::size_t i = 0; i < sum.size(); ++i)
-    for (int c = 0; c < 3; ++c) r.xyz[3 * i + c] = std::isfinite(sum[i][c]) ? static_cast<float>(sum[i][c]) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+      r.xyz[3 * i + c] = std::isfinite(sum[i][c]) ? static_cast<float>(sum[i][c]) : 0.0f;
   r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   r.wavelengths = L.n;
   r.model_report = "bench-side SML condenser + objective (paper lens, N-BK7), dT = " +
-                   std::to_string(scene.optics.lens_depth) + (scene.optics.fresnel == FresnelModel::Schlick ? ", Schlick" : ", Fresnel") +
+                   std::to_string(scene.optics.lens_depth) +
+                   (scene.optics.fresnel == FresnelModel::Schlick ? ", Schlick" : ", Fresnel") +
                    ", ghosts splatted by back-focal-plane crossing; plate: renderer's modal fit, " +
                    std::to_string(L.n) + " bands";
   return r;

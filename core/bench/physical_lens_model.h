@@ -21,9 +21,10 @@
 // exposure convention: empty stage, parallel polars, Y = 1 on the axis; docs/conventions.md), as in
 // the renderer's own physical model, which differs from this one in tracing one meridional profile
 // per lens instead of every pixel's rays and in adding the condenser's ghosts too (by reciprocity;
-// here the condenser is its depth-0 path only). The lenses are traced at 550 nm (their dispersion shifts Fresnel losses by < 1 % across the
-// visible); the plate keeps its full dispersion. The Bertrand lens is ideal (it images the
-// back-focal plane; its own Fresnel losses are polarization-neutral to first order near the axis).
+// here the condenser is its depth-0 path only). The lenses are traced at 550 nm (their dispersion shifts
+// Fresnel losses by < 1 % across the visible); the plate keeps its full dispersion. The Bertrand lens is
+// ideal (it images the back-focal plane; its own Fresnel losses are polarization-neutral to first order near
+// the axis).
 #include "core/bench/bench_strategy.h"
 #include "core/microscope/scene.h"
 

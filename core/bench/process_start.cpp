@@ -19,7 +19,8 @@ namespace pmsim {
 namespace {
 // One spawn → exit; returns wall milliseconds, adds the child's peak RSS to rss_kb.
 double run_once(const std::string& binary, const std::string& out, long& rss_kb) {
-  std::vector<std::string> args = {binary, "--set", "render.width=8", "--set", "render.height=8", "--out", out};
+  std::vector<std::string> args = {binary,  "--set", "render.width=8", "--set", "render.height=8",
+                                   "--out", out};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -36,15 +37,17 @@ double run_once(const std::string& binary, const std::string& out, long& rss_kb)
   if (wait4(pid, &status, 0, &usage) != pid) throw std::runtime_error("lost the child process of " + binary);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error(binary + " failed on an 8x8 render (exit status " + std::to_string(status) + ")");
+    throw std::runtime_error(binary + " failed on an 8x8 render (exit status " + std::to_string(status) +
+                             ")");
   rss_kb = std::max(rss_kb, usage.ru_maxrss);
   return ms;
 }
 }  // namespace
 
 ProcessStartResult measure_process_start(const std::string& render_binary, int runs) {
-  const std::string out = (std::filesystem::temp_directory_path() /
-                           ("pmsim_bench_start_" + std::to_string(::getpid()) + ".png")).string();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("pmsim_bench_start_" + std::to_string(::getpid()) + ".png"))
+          .string();
   ProcessStartResult r;
   long rss = 0;
   run_once(render_binary, out, rss);

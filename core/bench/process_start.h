@@ -10,7 +10,7 @@ namespace pmsim {
 struct ProcessStartResult {
   int runs = 0;
   double median_ms = 0.0, min_ms = 0.0, max_ms = 0.0;  // wall, spawn → exit
-  long max_rss_kb = 0;                                  // peak resident set of the slowest-memory run
+  long max_rss_kb = 0;                                 // peak resident set of the slowest-memory run
 };
 
 // Runs `render_binary --set render.width=8 --set render.height=8 --out <tmp>.png` `runs` times

@@ -66,8 +66,7 @@ bool read_cache(const std::string& path, ReferenceImage& r) {
   std::int32_t wh[2];
   in.read(magic, 8);
   in.read(reinterpret_cast<char*>(wh), sizeof wh);
-  if (!in || std::memcmp(magic, kMagic, 8) != 0 || wh[0] <= 0 || wh[1] <= 0 || wh[0] > 16384 ||
-      wh[1] > 16384)
+  if (!in || std::memcmp(magic, kMagic, 8) != 0 || wh[0] <= 0 || wh[1] <= 0 || wh[0] > 16384 || wh[1] > 16384)
     return false;
   const std::size_t n = static_cast<std::size_t>(wh[0]) * wh[1];
   r.width = wh[0];
@@ -187,7 +186,8 @@ std::string cache_path(const std::string& cache_dir, const std::string& what) {
 bool try_cache(const std::string& path, const Scene& s, ReferenceImage& out) {
   if (path.empty()) return false;
   ReferenceImage cached;
-  if (!read_cache(path, cached) || cached.width != s.render.width || cached.height != s.render.height) return false;
+  if (!read_cache(path, cached) || cached.width != s.render.width || cached.height != s.render.height)
+    return false;
   cached.from_cache = true;
   cached.cache_file = path;
   out = std::move(cached);
@@ -220,7 +220,8 @@ ReferenceImage converged_reference(const Scene& scene, const std::string& cache_
                         const EvalUnit& unit = plan->units()[u];
                         const int D = plan->dirs_of(unit);
                         UnitXyz acc;
-                        for (int d = 0; d < D; ++d) evaluate_direction(*plan, L, unit, plan->dir(unit, d), modes, acc);
+                        for (int d = 0; d < D; ++d)
+                          evaluate_direction(*plan, L, unit, plan->dir(unit, d), modes, acc);
                         units[u].full = acc.full / static_cast<double>(D);
                         units[u].half = acc.half / static_cast<double>(D);
                       }

@@ -19,10 +19,10 @@ namespace pmsim {
 
 struct ReferenceImage {
   int width = 0, height = 0;
-  std::vector<float> xyz;          // 1 nm reference
-  std::vector<float> xyz_half;     // the same with 2 nm bands (convergence check)
-  std::vector<std::uint8_t> lit;   // pixels that receive light (the error is taken over these)
-  double time_ms = 0.0;            // compute time (0 when read from the cache)
+  std::vector<float> xyz;         // 1 nm reference
+  std::vector<float> xyz_half;    // the same with 2 nm bands (convergence check)
+  std::vector<std::uint8_t> lit;  // pixels that receive light (the error is taken over these)
+  double time_ms = 0.0;           // compute time (0 when read from the cache)
   bool from_cache = false;
   std::string cache_file;
 };

@@ -48,16 +48,15 @@ double RotatoryDispersion::rho(double wavelength_nm) const {
   return A_rad_um / (l * l - lambda0_um * lambda0_um);
 }
 
-Crystal Crystal::make(std::string name, CrystalSymmetry symmetry, IndexDispersion x,
-                      IndexDispersion y, IndexDispersion z, std::string source) {
+Crystal Crystal::make(std::string name, CrystalSymmetry symmetry, IndexDispersion x, IndexDispersion y,
+                      IndexDispersion z, std::string source) {
   Crystal c;
   c.name_ = std::move(name);
   c.symmetry_ = symmetry;
   c.disp_[0] = x;
   c.disp_[1] = y;
   c.disp_[2] = z;
-  c.constant_ = x.model == IndexDispersion::Model::Constant &&
-                y.model == IndexDispersion::Model::Constant &&
+  c.constant_ = x.model == IndexDispersion::Model::Constant && y.model == IndexDispersion::Model::Constant &&
                 z.model == IndexDispersion::Model::Constant;
   c.constant_indices_ = glm::dvec3(x.A, y.A, z.A);
   c.source_ = std::move(source);
@@ -78,8 +77,8 @@ Crystal Crystal::uniaxial_constant(std::string name, double no, double ne) {
 }
 
 Crystal Crystal::biaxial_constant(std::string name, double nalpha, double nbeta, double ngamma) {
-  return make(std::move(name), CrystalSymmetry::Biaxial, constant_index(nalpha),
-              constant_index(nbeta), constant_index(ngamma), "constant indices given by the user");
+  return make(std::move(name), CrystalSymmetry::Biaxial, constant_index(nalpha), constant_index(nbeta),
+              constant_index(ngamma), "constant indices given by the user");
 }
 
 Crystal Crystal::isotropic_constant(std::string name, double n) {
@@ -169,8 +168,8 @@ Crystal crystal_from_indices(const CrystalIndices& c) {
     try {
       check_biaxial_order(c.nalpha, c.nbeta, c.ngamma);
     } catch (const BadValue& b) {
-      throw InputError("", "", number_text(c.nalpha) + ", " + number_text(c.nbeta) + ", " +
-                       number_text(c.ngamma), b.why);
+      throw InputError(
+          "", "", number_text(c.nalpha) + ", " + number_text(c.nbeta) + ", " + number_text(c.ngamma), b.why);
     }
   }
   if (c.uniaxial) return Crystal::uniaxial_constant("custom uniaxial", c.no, c.ne);

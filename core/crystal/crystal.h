@@ -24,7 +24,7 @@ enum class CrystalSymmetry { Isotropic, Uniaxial, Biaxial };
 // Dispersion of one principal index; a plain tagged value (no virtual call per evaluation).
 struct IndexDispersion {
   enum class Model {
-    Constant,   // n = A
+    Constant,  // n = A
     Ghosh1999,  // n² = A + B/(1 − C/λ²) + D/(1 − E/λ²), λ in µm (Ghosh, Opt. Commun. 163, 95 (1999))
     Cauchy      // n = A + B/λ² + C/λ⁴, λ in µm
   };
@@ -46,7 +46,7 @@ struct AbsorptionTable {
 // in rad per µm, λ in µm. Positive = dextrorotatory (clockwise as seen by the observer looking
 // toward the source), the convention of chemistry and of "right-handed quartz".
 struct RotatoryDispersion {
-  double A_rad_um = 0.0;    // rad·µm (ρ·(λ²−λ0²))
+  double A_rad_um = 0.0;  // rad·µm (ρ·(λ²−λ0²))
   double lambda0_um = 0.0;
   double rho(double wavelength_nm) const;
 };
@@ -79,8 +79,8 @@ class Crystal {
   static Crystal biaxial_constant(std::string name, double nalpha, double nbeta, double ngamma);
   static Crystal isotropic_constant(std::string name, double n);
   // General constructor used by the mineral loader; axes follow the convention above.
-  static Crystal make(std::string name, CrystalSymmetry symmetry, IndexDispersion x,
-                      IndexDispersion y, IndexDispersion z, std::string source);
+  static Crystal make(std::string name, CrystalSymmetry symmetry, IndexDispersion x, IndexDispersion y,
+                      IndexDispersion z, std::string source);
   void set_absorption(AbsorptionTable x, AbsorptionTable y, AbsorptionTable z);
   void set_rotatory_power(RotatoryDispersion rho);
 

@@ -60,7 +60,8 @@ std::vector<int> indices(std::string_view text, char open, char close, const cha
     r.push_back(sign * v);
   }
   if (r.size() != 3 && r.size() != 4)
-    throw BadValue{std::string("expected three indices (or four, Miller–Bravais) in ") + what + " like " + example};
+    throw BadValue{std::string("expected three indices (or four, Miller–Bravais) in ") + what + " like " +
+                   example};
   bool zero = true;
   for (int v : r) zero &= v == 0;
   if (zero) throw BadValue{"all indices zero define no plane or direction"};
@@ -71,13 +72,20 @@ std::vector<int> indices(std::string_view text, char open, char close, const cha
 
 const char* crystal_system_name(CrystalSystem s) {
   switch (s) {
-    case CrystalSystem::Cubic: return "cubic";
-    case CrystalSystem::Tetragonal: return "tetragonal";
-    case CrystalSystem::Hexagonal: return "hexagonal";
-    case CrystalSystem::Trigonal: return "trigonal";
-    case CrystalSystem::Orthorhombic: return "orthorhombic";
-    case CrystalSystem::Monoclinic: return "monoclinic";
-    case CrystalSystem::Triclinic: return "triclinic";
+    case CrystalSystem::Cubic:
+      return "cubic";
+    case CrystalSystem::Tetragonal:
+      return "tetragonal";
+    case CrystalSystem::Hexagonal:
+      return "hexagonal";
+    case CrystalSystem::Trigonal:
+      return "trigonal";
+    case CrystalSystem::Orthorhombic:
+      return "orthorhombic";
+    case CrystalSystem::Monoclinic:
+      return "monoclinic";
+    case CrystalSystem::Triclinic:
+      return "triclinic";
   }
   return "triclinic";
 }
@@ -90,15 +98,16 @@ void check_unit_cell(CrystalSystem system, const UnitCell& c) {
   const double ca = cos_deg(c.alpha_deg), cb = cos_deg(c.beta_deg), cg = cos_deg(c.gamma_deg);
   // V² = a²b²c²(1 − cos²α − cos²β − cos²γ + 2 cos α cos β cos γ) must be positive.
   if (!(1 - ca * ca - cb * cb - cg * cg + 2 * ca * cb * cg > 1e-12))
-    throw BadValue{"the cell angles " + num(c.alpha_deg) + ", " + num(c.beta_deg) + ", " +
-                   num(c.gamma_deg) + "° enclose no volume"};
+    throw BadValue{"the cell angles " + num(c.alpha_deg) + ", " + num(c.beta_deg) + ", " + num(c.gamma_deg) +
+                   "° enclose no volume"};
   auto need = [&](bool ok, const char* rule) {
     if (!ok) throw BadValue{std::string(crystal_system_name(system)) + " cells have " + rule};
   };
   const bool right_a = c.alpha_deg == 90, right_b = c.beta_deg == 90, right_g = c.gamma_deg == 90;
   switch (system) {
     case CrystalSystem::Cubic:
-      need(same(c.a_A, c.b_A) && same(c.b_A, c.c_A) && right_a && right_b && right_g, "a = b = c, α = β = γ = 90°");
+      need(same(c.a_A, c.b_A) && same(c.b_A, c.c_A) && right_a && right_b && right_g,
+           "a = b = c, α = β = γ = 90°");
       break;
     case CrystalSystem::Tetragonal:
       need(same(c.a_A, c.b_A) && right_a && right_b && right_g, "a = b, α = β = γ = 90°");

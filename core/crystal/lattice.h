@@ -23,8 +23,8 @@ enum class CrystalSystem { Cubic, Tetragonal, Hexagonal, Trigonal, Orthorhombic,
 const char* crystal_system_name(CrystalSystem s);
 
 struct UnitCell {
-  double a_A = 1, b_A = 1, c_A = 1;                          // edge lengths, ångström
-  double alpha_deg = 90, beta_deg = 90, gamma_deg = 90;      // α = b∧c, β = c∧a, γ = a∧b
+  double a_A = 1, b_A = 1, c_A = 1;                      // edge lengths, ångström
+  double alpha_deg = 90, beta_deg = 90, gamma_deg = 90;  // α = b∧c, β = c∧a, γ = a∧b
 };
 
 // The constraints of each system on the cell (Giacovazzo 2011), with hexagonal and

@@ -6,11 +6,13 @@ namespace pmsim {
 
 namespace {
 
-const NameTable<CrystalSystem> kSystems = {
-    {"cubic", CrystalSystem::Cubic},           {"tetragonal", CrystalSystem::Tetragonal},
-    {"hexagonal", CrystalSystem::Hexagonal},   {"trigonal", CrystalSystem::Trigonal},
-    {"orthorhombic", CrystalSystem::Orthorhombic}, {"monoclinic", CrystalSystem::Monoclinic},
-    {"triclinic", CrystalSystem::Triclinic}};
+const NameTable<CrystalSystem> kSystems = {{"cubic", CrystalSystem::Cubic},
+                                           {"tetragonal", CrystalSystem::Tetragonal},
+                                           {"hexagonal", CrystalSystem::Hexagonal},
+                                           {"trigonal", CrystalSystem::Trigonal},
+                                           {"orthorhombic", CrystalSystem::Orthorhombic},
+                                           {"monoclinic", CrystalSystem::Monoclinic},
+                                           {"triclinic", CrystalSystem::Triclinic}};
 const NameTable<IndicatrixAxis> kAxes = {
     {"x", IndicatrixAxis::X}, {"y", IndicatrixAxis::Y}, {"z", IndicatrixAxis::Z}};
 const NameTable<MonoclinicSide> kSides = {{"obtuse_beta", MonoclinicSide::ObtuseBeta},
@@ -70,9 +72,8 @@ OpticalOrientation orientation_at(const JsonReader& o) {
 
 std::optional<MineralCrystallography> read_mineral_crystallography(const JsonReader& root,
                                                                    CrystalSymmetry symmetry) {
-  const bool any = root.has("crystal_system") || root.has("unit_cell") ||
-                   root.has("optical_orientation") || root.has("cleavage") || root.has("habit") ||
-                   root.has("twins");
+  const bool any = root.has("crystal_system") || root.has("unit_cell") || root.has("optical_orientation") ||
+                   root.has("cleavage") || root.has("habit") || root.has("twins");
   if (!any) return std::nullopt;
   MineralCrystallography m;
   m.system = root.require_enum("crystal_system", kSystems);

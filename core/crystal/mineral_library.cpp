@@ -37,7 +37,6 @@ namespace {
 
 using nlohmann::json;
 
-
 struct Reader {
   const std::string& file;
   [[noreturn]] void fail(const std::string& key, const json& v, const std::string& why) const {
@@ -68,8 +67,7 @@ struct Reader {
     return d.n(589.3);
   }
   // Typos must not pass silently: a misspelt optional key would drop its data.
-  void only_keys(const json& obj, const std::string& prefix,
-                 std::initializer_list<const char*> known) const {
+  void only_keys(const json& obj, const std::string& prefix, std::initializer_list<const char*> known) const {
     if (!obj.is_object()) return;
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool ok = false;
@@ -125,9 +123,10 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
   const json j = read_json_file(path, "mineral file");
   const Reader r{path};
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
-  r.only_keys(j, "", {"name", "symmetry", "source", "indices", "absorption", "rotatory_power",
-                      "optic_angle_2vz_deg", "pleochroism", "note", "description", "crystal_system",
-                      "unit_cell", "optical_orientation", "cleavage", "habit", "twins"});
+  r.only_keys(j, "",
+              {"name", "symmetry", "source", "indices", "absorption", "rotatory_power", "optic_angle_2vz_deg",
+               "pleochroism", "note", "description", "crystal_system", "unit_cell", "optical_orientation",
+               "cleavage", "habit", "twins"});
   const json& name_v = r.need(j, "name", "name");
   if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
   const json& src_v = r.need(j, "source", "source");
@@ -158,8 +157,7 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
         r.fail("indices", idx, e.why + " (at " + number_text(wl) + " nm)");
       }
     }
-    c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Biaxial, a, b, g,
-                      src_v.get<std::string>());
+    c = Crystal::make(name_v.get<std::string>(), CrystalSymmetry::Biaxial, a, b, g, src_v.get<std::string>());
     axis_keys = {"alpha", "beta", "gamma"};
   } else if (sym == "isotropic") {
     r.only_keys(idx, "indices.", {"n"});
@@ -177,14 +175,19 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
     r.only_keys(ab, "absorption.", {"source", "reference_thickness_um", "wavelength_nm", "transmittance"});
     const double d_um = r.number(r.need(ab, "reference_thickness_um", "absorption.reference_thickness_um"),
                                  "absorption.reference_thickness_um");
-    if (!(d_um > 0.0)) r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
-    const auto wl = r.numbers(r.need(ab, "wavelength_nm", "absorption.wavelength_nm"), "absorption.wavelength_nm");
+    if (!(d_um > 0.0))
+      r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
+    const auto wl =
+        r.numbers(r.need(ab, "wavelength_nm", "absorption.wavelength_nm"), "absorption.wavelength_nm");
     for (size_t i = 1; i < wl.size(); ++i)
       if (!(wl[i] > wl[i - 1])) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "must increase");
     const json& tr = r.need(ab, "transmittance", "absorption.transmittance");
-    if (sym == "uniaxial") r.only_keys(tr, "absorption.transmittance.", {"o", "e"});
-    else if (sym == "biaxial") r.only_keys(tr, "absorption.transmittance.", {"alpha", "beta", "gamma"});
-    else r.only_keys(tr, "absorption.transmittance.", {"n"});
+    if (sym == "uniaxial")
+      r.only_keys(tr, "absorption.transmittance.", {"o", "e"});
+    else if (sym == "biaxial")
+      r.only_keys(tr, "absorption.transmittance.", {"alpha", "beta", "gamma"});
+    else
+      r.only_keys(tr, "absorption.transmittance.", {"n"});
     AbsorptionTable t[3];
     for (int k = 0; k < 3; ++k) {
       const std::string key = "absorption.transmittance." + axis_keys[k];
@@ -205,13 +208,18 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
     r.only_keys(rp, "rotatory_power.", {"source", "A_deg_um2_per_mm", "lambda0_um", "handedness"});
     const double a_deg = r.number(r.need(rp, "A_deg_um2_per_mm", "rotatory_power.A_deg_um2_per_mm"),
                                   "rotatory_power.A_deg_um2_per_mm");
-    const double l0 = r.number(r.need(rp, "lambda0_um", "rotatory_power.lambda0_um"), "rotatory_power.lambda0_um");
-    if (!(l0 >= 0.0 && l0 < 0.35)) r.fail("rotatory_power.lambda0_um", rp["lambda0_um"], "must be in [0, 0.35)");
+    const double l0 =
+        r.number(r.need(rp, "lambda0_um", "rotatory_power.lambda0_um"), "rotatory_power.lambda0_um");
+    if (!(l0 >= 0.0 && l0 < 0.35))
+      r.fail("rotatory_power.lambda0_um", rp["lambda0_um"], "must be in [0, 0.35)");
     const json& hand = r.need(rp, "handedness", "rotatory_power.handedness");
     double sign = 0.0;
-    if (hand == "right") sign = 1.0;
-    else if (hand == "left") sign = -1.0;
-    else r.fail("rotatory_power.handedness", hand, "expected right or left");
+    if (hand == "right")
+      sign = 1.0;
+    else if (hand == "left")
+      sign = -1.0;
+    else
+      r.fail("rotatory_power.handedness", hand, "expected right or left");
     RotatoryDispersion rd;
     rd.A_rad_um = sign * a_deg * (kPi / 180.0) * 1e-3;  // °·µm²/mm → rad·µm²/µm
     rd.lambda0_um = l0;

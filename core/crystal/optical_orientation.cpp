@@ -26,22 +26,24 @@ glm::dmat3 frame(const glm::dvec3 (&v)[3]) {
 char indicatrix_axis_name(IndicatrixAxis a) { return "XYZ"[index_of(a)]; }
 
 glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const OpticalOrientation& o) {
-  const bool uniaxial_system = system == CrystalSystem::Tetragonal ||
-                               system == CrystalSystem::Hexagonal || system == CrystalSystem::Trigonal;
+  const bool uniaxial_system = system == CrystalSystem::Tetragonal || system == CrystalSystem::Hexagonal ||
+                               system == CrystalSystem::Trigonal;
   const glm::dmat3 d = direct_basis(cell);
   const glm::dvec3 a = glm::normalize(d[0]), b = glm::normalize(d[1]), c = glm::normalize(d[2]);
   switch (o.kind) {
     case OpticalOrientation::Kind::Uniaxial: {
       if (!uniaxial_system)
         throw BadValue{std::string("a uniaxial orientation (optic axis ∥ c) needs a tetragonal, hexagonal or "
-                                   "trigonal crystal, not ") + crystal_system_name(system)};
+                                   "trigonal crystal, not ") +
+                       crystal_system_name(system)};
       const glm::dvec3 x = glm::normalize(glm::cross(b, c));  // ⟂ c, in the a direction's half
       return glm::dmat3(x, glm::cross(c, x), c);
     }
     case OpticalOrientation::Kind::Orthorhombic: {
       if (system != CrystalSystem::Orthorhombic)
-        throw BadValue{std::string("\"a\"/\"b\"/\"c\" → X/Y/Z assignments are for orthorhombic crystals, not ") +
-                       crystal_system_name(system)};
+        throw BadValue{
+            std::string("\"a\"/\"b\"/\"c\" → X/Y/Z assignments are for orthorhombic crystals, not ") +
+            crystal_system_name(system)};
       const int ia = index_of(o.along_a), ib = index_of(o.along_b), ic = index_of(o.along_c);
       if (ia == ib || ib == ic || ia == ic) throw BadValue{"a, b and c must take X, Y and Z once each"};
       glm::dvec3 v[3];
@@ -51,7 +53,8 @@ glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const Opt
     case OpticalOrientation::Kind::Monoclinic: {
       if (system != CrystalSystem::Monoclinic)
         throw BadValue{std::string("a monoclinic orientation (axis ∥ b, angle in the a–c plane) needs a "
-                                   "monoclinic crystal, not ") + crystal_system_name(system)};
+                                   "monoclinic crystal, not ") +
+                       crystal_system_name(system)};
       if (o.inclined == o.along_b) throw BadValue{"the inclined axis cannot also be the one ∥ b"};
       if (!(std::isfinite(o.angle_deg) && o.angle_deg >= 0 && o.angle_deg <= 90))
         throw BadValue{"the angle to the crystal axis must be in [0, 90]°"};

@@ -39,8 +39,8 @@ struct OpticalOrientation {
 
 // Columns: X, Y, Z (unit vectors) in the crystal Cartesian frame of lattice.h, right-handed.
 // For uniaxial crystals Z = c and X, Y complete a right-handed frame (X ∥ a*, ⟂ b and c; any
-// choice is equivalent since nX = nY). Throws BadValue when the data do not fit the system (e.g. a monoclinic orientation
-// for an orthorhombic cell, the inclined axis equal to the one ∥ b, a repeated axis).
+// choice is equivalent since nX = nY). Throws BadValue when the data do not fit the system (e.g. a monoclinic
+// orientation for an orthorhombic cell, the inclined axis equal to the one ∥ b, a repeated axis).
 glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const OpticalOrientation& o);
 
 char indicatrix_axis_name(IndicatrixAxis a);  // 'X', 'Y', 'Z'

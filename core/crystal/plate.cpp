@@ -11,12 +11,12 @@
 //   A = I/ne² + (1/no² − 1/ne²)ccᵀ). Biaxial: the fixed point n ← n(s(n)) for each mode, which
 //   contracts by about (nγ − nα)·tanθ/n per step and is iterated to 1e-15.
 // * Faces: exact single-interface amplitudes from continuity of tangential E and H (the
-//   boundary-value problem of Yariv & Yeh ch. 4; Born & Wolf §1.5 for the isotropic case): at entry the unknowns are the two forward modes and the
-//   reflected s and p waves; at exit the transmitted s and p waves and the two backward modes.
-//   Each is a 4×4 real linear system. Multiple reflections inside the plate are neglected (their
-//   power is ~R² ≈ 1e-6 of the direct wave); so |J|² ≤ 1 without absorption.
-//   With fresnel = false the incident field is decomposed on the orthogonal basis nearest to the
-//   mode D directions (TE/TM coordinates) and recomposed from it, lossless.
+//   boundary-value problem of Yariv & Yeh ch. 4; Born & Wolf §1.5 for the isotropic case): at entry the
+//   unknowns are the two forward modes and the reflected s and p waves; at exit the transmitted s and p waves
+//   and the two backward modes. Each is a 4×4 real linear system. Multiple reflections inside the plate are
+//   neglected (their power is ~R² ≈ 1e-6 of the direct wave); so |J|² ≤ 1 without absorption. With fresnel =
+//   false the incident field is decomposed on the orthogonal basis nearest to the mode D directions (TE/TM
+//   coordinates) and recomposed from it, lossless.
 // * TE/TM coordinates: s = unit(ẑ × k), p = s × k; the same (p, s) components describe the field
 //   outside relative to k_air, so the Jones matrix is returned in transverse_basis(k_air) after a
 //   rotation from (p, s).
@@ -94,7 +94,13 @@ inline Eigen2 eigen_sym2(double a, double b, double c) {
   Eigen2 e{m + r, m - r, 1.0, 0.0};
   if (r > 0.0) {
     double x, y;
-    if (h >= 0.0) { x = h + r; y = b; } else { x = b; y = r - h; }
+    if (h >= 0.0) {
+      x = h + r;
+      y = b;
+    } else {
+      x = b;
+      y = r - h;
+    }
     const double len = std::sqrt(x * x + y * y);
     e.fx = x / len;
     e.fy = y / len;
@@ -150,11 +156,11 @@ double bracketed_mode_index(const G& g, int i, double lo, double hi) {
 
 // The two eigenmodes travelling forward (dir = +1) or backward (dir = −1) for tangential q.
 struct ModePair {
-  double kz[2];        // units of k0; [0] fast, [1] slow
+  double kz[2];  // units of k0; [0] fast, [1] slow
   double n[2];
-  glm::dvec3 s[2];     // wave normals
-  double dp[2], ds[2]; // D in TE/TM coordinates of its own wave normal (unit)
-  glm::dvec3 D[2];     // unit D vectors
+  glm::dvec3 s[2];      // wave normals
+  double dp[2], ds[2];  // D in TE/TM coordinates of its own wave normal (unit)
+  glm::dvec3 D[2];      // unit D vectors
 };
 
 ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, const glm::dvec3& s_hat,
@@ -259,7 +265,9 @@ ModePair find_modes(const PreparedPlate& P, double qx, double qy, double q2, con
 
 // Tangential field (E_x, E_y, H_x, H_y) of a plane wave with wave vector k (units of k0) and
 // field E; H = k × E in units of E/Z0 (Maxwell: k0·H·Z0 = k × E).
-struct Tangential { double v[4]; };
+struct Tangential {
+  double v[4];
+};
 inline Tangential tangential(const glm::dvec3& k, const glm::dvec3& E) {
   const glm::dvec3 H = glm::cross(k, E);
   return {{E.x, E.y, H.x, H.y}};
@@ -296,10 +304,10 @@ void solve4(const Tangential cols[4], const Tangential rhs[2], double x[2][4]) {
 
 struct Solved {
   PlateModes m;
-  double tin[2][2];    // mode amplitudes from (p, s) incident amplitudes: tin[mode][p|s]
-  double tout[2][2];   // outgoing (p, s) amplitudes per unit mode amplitude: tout[p|s][mode]
-  double kappa[2];     // amplitude attenuation exponents
-  double alpha;        // optical rotation angle (rad, counter-clockwise positive)
+  double tin[2][2];   // mode amplitudes from (p, s) incident amplitudes: tin[mode][p|s]
+  double tout[2][2];  // outgoing (p, s) amplitudes per unit mode amplitude: tout[p|s][mode]
+  double kappa[2];    // amplitude attenuation exponents
+  double alpha;       // optical rotation angle (rad, counter-clockwise positive)
   glm::dvec3 s_hat, p_air;
 };
 
@@ -379,7 +387,8 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) out.tin[i][j] = xin[j][i];
     // Exit: t_p·ψ_tp + t_s·ψ_ts − b1·ψ_b1 − b2·ψ_b2 = ψ_mode, for each forward mode.
-    const Tangential out_cols[4] = {tangential(kf, pf), tangential(kf, s_hat), neg(mode_b[0]), neg(mode_b[1])};
+    const Tangential out_cols[4] = {tangential(kf, pf), tangential(kf, s_hat), neg(mode_b[0]),
+                                    neg(mode_b[1])};
     double xout[2][4];
     solve4(out_cols, mode_f, xout);
     for (int i = 0; i < 2; ++i)
@@ -421,9 +430,7 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
 
 }  // namespace
 
-PlateModes plate_modes(const PreparedPlate& plate, const glm::dvec3& k_air) {
-  return solve(plate, k_air).m;
-}
+PlateModes plate_modes(const PreparedPlate& plate, const glm::dvec3& k_air) { return solve(plate, k_air).m; }
 
 PlateModes plate_modes(const PlateSpec& plate, const glm::dvec3& k_air, double wavelength_nm) {
   return plate_modes(prepare_plate(plate, wavelength_nm), k_air);

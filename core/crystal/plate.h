@@ -27,38 +27,38 @@ struct PlateSpec {
   const Crystal* crystal = nullptr;
   glm::dmat3 crystal_to_lab{1.0};  // columns: crystal X, Y, Z in the lab; stage rotation applied
   double thickness_um = 30.0;
-  double n_outside = 1.54;         // medium on both faces (mounting medium)
-  bool fresnel = true;             // include the interface transmission amplitudes at both faces
+  double n_outside = 1.54;  // medium on both faces (mounting medium)
+  bool fresnel = true;      // include the interface transmission amplitudes at both faces
 };
 
 // Everything of a plate that depends on the wavelength but not on the direction, so that a
 // renderer evaluating many directions at one wavelength pays for the dispersion formulas once.
 struct PreparedPlate {
-  glm::dmat3 eta{1.0};         // impermeability tensor ε⁻¹ in the lab frame (real, symmetric)
-  glm::dmat3 mu_tensor{0.0};   // absorption tensor Σ μ_k·axis_k·axis_kᵀ (per µm)
+  glm::dmat3 eta{1.0};                   // impermeability tensor ε⁻¹ in the lab frame (real, symmetric)
+  glm::dmat3 mu_tensor{0.0};             // absorption tensor Σ μ_k·axis_k·axis_kᵀ (per µm)
   glm::dvec3 optic_axis{0.0, 0.0, 1.0};  // lab-frame Z (optical activity uses it; uniaxial)
   glm::dvec3 n_principal{1.5};
-  double k0_per_um = 0.0;      // 2π/λ
+  double k0_per_um = 0.0;  // 2π/λ
   double thickness_um = 30.0;
   double n_outside = 1.54;
-  double rho_rad_per_um = 0.0; // rotatory power along the optic axis (signed, + dextrorotatory)
-  double mean_n = 1.5;         // nβ (start of the biaxial iteration)
+  double rho_rad_per_um = 0.0;  // rotatory power along the optic axis (signed, + dextrorotatory)
+  double mean_n = 1.5;          // nβ (start of the biaxial iteration)
   CrystalSymmetry symmetry = CrystalSymmetry::Isotropic;
   bool fresnel = true;
   bool absorbing = false;
 };
 PreparedPlate prepare_plate(const PlateSpec& plate, double wavelength_nm);
 
-struct PlateModes {         // the two eigenmodes inside the plate for that wave
-  double n1, n2;            // effective refractive indices (n1 ≤ n2: n2 is the slow wave)
-  glm::dvec3 e1, e2;        // their field directions projected to the transverse plane of k_air (unit)
-  double retardation_nm;    // Γ = d·(k_z2 − k_z1)/k0: optical path difference slow − fast (≥ 0)
-  double t1, t2;            // amplitude transmissions (both faces × absorption) of a wave polarized
-                            // along e1 (e2) through that mode alone; 1 − R per face at normal incidence
+struct PlateModes {       // the two eigenmodes inside the plate for that wave
+  double n1, n2;          // effective refractive indices (n1 ≤ n2: n2 is the slow wave)
+  glm::dvec3 e1, e2;      // their field directions projected to the transverse plane of k_air (unit)
+  double retardation_nm;  // Γ = d·(k_z2 − k_z1)/k0: optical path difference slow − fast (≥ 0)
+  double t1, t2;          // amplitude transmissions (both faces × absorption) of a wave polarized
+                          // along e1 (e2) through that mode alone; 1 − R per face at normal incidence
   // Extra detail (same wave):
-  glm::dvec3 s1, s2;        // unit wave normals inside the crystal
-  double kz1, kz2;          // normal wave-vector components in units of k0 (k_z = n·s_z)
-  double mean_phase_rad;    // k0·d·(k_z1 + k_z2)/2: the common phase plate_jones removes
+  glm::dvec3 s1, s2;              // unit wave normals inside the crystal
+  double kz1, kz2;                // normal wave-vector components in units of k0 (k_z = n·s_z)
+  double mean_phase_rad;          // k0·d·(k_z1 + k_z2)/2: the common phase plate_jones removes
   glm::dvec3 walkoff1, walkoff2;  // lateral ray displacement across the plate (µm), from the
                                   // Poynting directions; plate_jones neglects it (see plate.cpp)
 };

@@ -18,8 +18,9 @@ SectionOptics section_optics(const glm::dmat3& axes, const glm::dvec3& n_xyz, co
   SectionOptics s;
   s.normal = glm::normalize(normal);
   // The indicatrix as a quadratic form r·B·r = 1 with B = A·diag(1/n²)·Aᵀ (A: columns X, Y, Z).
-  const glm::dmat3 B = axes * glm::dmat3(1.0 / (n_xyz.x * n_xyz.x), 0, 0, 0, 1.0 / (n_xyz.y * n_xyz.y), 0,
-                                          0, 0, 1.0 / (n_xyz.z * n_xyz.z)) *
+  const glm::dmat3 B = axes *
+                       glm::dmat3(1.0 / (n_xyz.x * n_xyz.x), 0, 0, 0, 1.0 / (n_xyz.y * n_xyz.y), 0, 0, 0,
+                                  1.0 / (n_xyz.z * n_xyz.z)) *
                        glm::transpose(axes);
   // Any orthonormal basis (u, v) of the section; the central section's ellipse is the 2×2 form
   // q = [u v]ᵀ B [u v], whose eigenvectors are its axes and eigenvalues 1/n′².

@@ -23,7 +23,7 @@ struct SectionOptics {
   glm::dvec3 fast{1, 0, 0};    // vibration direction of the lower index n′α
   glm::dvec3 slow{0, 1, 0};    // vibration direction of the higher index n′γ, slow = normal × fast
   double n_fast = 1.0, n_slow = 1.0;
-  bool circular = false;       // n′α = n′γ (to 1e-12): a section ⟂ an optic axis, no directions
+  bool circular = false;  // n′α = n′γ (to 1e-12): a section ⟂ an optic axis, no directions
 };
 
 // indicatrix_axes: columns X, Y, Z; principal_indices: (nX, nY, nZ) at the wavelength of interest.
@@ -44,9 +44,9 @@ double line_angle_deg(const glm::dvec3& section_normal, const glm::dvec3& from, 
 double trace_angle_deg(const glm::dvec3& t1, const glm::dvec3& t2);
 
 struct Extinction {
-  double angle_deg = 0.0;          // to the nearer vibration direction, [0, 45]
+  double angle_deg = 0.0;  // to the nearer vibration direction, [0, 45]
   bool nearer_is_slow = false;
-  double to_slow_deg = 0.0;        // signed line angle from the feature to the slow direction
+  double to_slow_deg = 0.0;  // signed line angle from the feature to the slow direction
 };
 Extinction extinction_from(const SectionOptics& s, const glm::dvec3& feature);
 

@@ -24,14 +24,12 @@ std::string temporary_path_for(const std::string& path) {
 }
 }  // namespace
 
-void write_atomically(const std::string& path,
-                      const std::function<void(const std::string&)>& write) {
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
   if (path.empty()) throw std::runtime_error("cannot write: empty output path");
   const std::string tmp = temporary_path_for(path);
   try {
     write(tmp);
-    if (!std::filesystem::exists(tmp))
-      throw std::runtime_error("the writer produced no file");
+    if (!std::filesystem::exists(tmp)) throw std::runtime_error("the writer produced no file");
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) throw std::runtime_error(ec.message());

@@ -20,7 +20,8 @@ const ImageCodec& oiio_codec() {
   void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!module) {
     const char* why = ::dlerror();
-    throw std::runtime_error("cannot load the OpenImageIO module " + path + ": " + (why ? why : "unknown reason"));
+    throw std::runtime_error("cannot load the OpenImageIO module " + path + ": " +
+                             (why ? why : "unknown reason"));
   }
   using Entry = const ImageCodec* (*)();
   const auto entry = reinterpret_cast<Entry>(::dlsym(module, "pmsim_oiio_codec"));

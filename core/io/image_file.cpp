@@ -24,7 +24,8 @@ std::string lower_extension(const std::string& path) {
 
 // PNG through libpng (no OpenImageIO for the common case: see core/io/image_codec.h), with the
 // text chunks OpenImageIO wrote: "pmsim:scene" and ImageDescription hold the scene JSON.
-void write_png(const std::string& tmp, int width, int height, const std::uint8_t* rgb8, const nlohmann::json& metadata) {
+void write_png(const std::string& tmp, int width, int height, const std::uint8_t* rgb8,
+               const nlohmann::json& metadata) {
   std::vector<std::pair<std::string, std::string>> text = {{"Software", "pmsim"}};
   if (!metadata.is_null()) {
     text.emplace_back("pmsim:scene", metadata.dump());
@@ -33,14 +34,15 @@ void write_png(const std::string& tmp, int width, int height, const std::uint8_t
   write_bytes_checked(tmp, encode_png_rgb8(width, height, rgb8, text));
 }
 
-std::string metadata_text(const nlohmann::json& metadata) { return metadata.is_null() ? "" : metadata.dump(); }
+std::string metadata_text(const nlohmann::json& metadata) {
+  return metadata.is_null() ? "" : metadata.dump();
+}
 
 }  // namespace
 
-void write_image(const std::string& path, int width, int height,
-                 const std::vector<float>& rgb_linear, const nlohmann::json& metadata) {
-  if (width <= 0 || height <= 0 ||
-      rgb_linear.size() != static_cast<std::size_t>(width) * height * 3)
+void write_image(const std::string& path, int width, int height, const std::vector<float>& rgb_linear,
+                 const nlohmann::json& metadata) {
+  if (width <= 0 || height <= 0 || rgb_linear.size() != static_cast<std::size_t>(width) * height * 3)
     throw std::runtime_error("cannot write " + path + ": image size does not match its pixels");
   const std::string ext = lower_extension(path);
   if (ext == ".png") {
@@ -61,8 +63,8 @@ void write_image(const std::string& path, int width, int height,
   });
 }
 
-void write_image_rgb8(const std::string& path, int width, int height,
-                      const std::vector<std::uint8_t>& rgb8, const nlohmann::json& metadata) {
+void write_image_rgb8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb8,
+                      const nlohmann::json& metadata) {
   if (width <= 0 || height <= 0 || rgb8.size() != static_cast<std::size_t>(width) * height * 3)
     throw std::runtime_error("cannot write " + path + ": image size does not match its pixels");
   const std::string ext = lower_extension(path);

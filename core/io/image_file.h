@@ -14,11 +14,11 @@ namespace pmsim {
 
 // rgb_linear: width*height*3 floats, top row first. Throws std::runtime_error naming the path on
 // an unwritable folder, a full disk or an unknown extension.
-void write_image(const std::string& path, int width, int height,
-                 const std::vector<float>& rgb_linear, const nlohmann::json& metadata);
+void write_image(const std::string& path, int width, int height, const std::vector<float>& rgb_linear,
+                 const nlohmann::json& metadata);
 // Already-encoded 8-bit RGB (e.g. a window screenshot read back from OpenGL), top row first.
-void write_image_rgb8(const std::string& path, int width, int height,
-                      const std::vector<std::uint8_t>& rgb8, const nlohmann::json& metadata);
+void write_image_rgb8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb8,
+                      const nlohmann::json& metadata);
 
 struct LoadedImage {
   int width = 0, height = 0, channels = 0;

@@ -30,8 +30,8 @@ bool write_with_libpng(png_structp png, png_infop info, EncodeState* state, int 
                        png_text* chunks, int chunk_count, png_bytepp rows) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_set_write_fn(png, state, append_bytes, no_flush);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   if (chunk_count > 0) png_set_text(png, info, chunks, chunk_count);
   png_set_rows(png, info, rows);
@@ -62,7 +62,9 @@ std::vector<unsigned char> encode_png_rgb8(int width, int height, const std::uin
   const bool ok = info && write_with_libpng(png, info, &state, width, height, chunks.data(),
                                             static_cast<int>(chunks.size()), rows.data());
   png_destroy_write_struct(&png, info ? &info : nullptr);
-  if (!ok) throw std::runtime_error(state.error.empty() ? "libpng: cannot create an info structure" : "libpng: " + state.error);
+  if (!ok)
+    throw std::runtime_error(state.error.empty() ? "libpng: cannot create an info structure"
+                                                 : "libpng: " + state.error);
   return bytes;
 }
 

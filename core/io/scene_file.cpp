@@ -46,11 +46,10 @@ std::string enum_name(E e, const NameTable<E>& names) {
 const NameTable<ViewMode> kModes = {{"ortho", ViewMode::Ortho}, {"cono", ViewMode::Cono}};
 const NameTable<SampleType> kSampleTypes = {
     {"plate", SampleType::Plate}, {"wedge", SampleType::Wedge}, {"section", SampleType::Section}};
-const NameTable<Compensator> kCompensators = {
-    {"none", Compensator::None},
-    {"gypsum", Compensator::Gypsum},
-    {"mica", Compensator::Mica},
-    {"quartz_wedge", Compensator::QuartzWedge}};
+const NameTable<Compensator> kCompensators = {{"none", Compensator::None},
+                                              {"gypsum", Compensator::Gypsum},
+                                              {"mica", Compensator::Mica},
+                                              {"quartz_wedge", Compensator::QuartzWedge}};
 // render.strategy: auto (the cheapest accurate plate model per scene), modal (eigenmodes fitted
 // across the spectrum, band-averaged interference terms), exact (plate Jones matrix at every
 // wavelength sample, plain midpoint quadrature: the paper's uniform sampling).
@@ -60,7 +59,8 @@ const NameTable<LensModel> kLensModels = {
     {"auto", LensModel::Auto}, {"ideal", LensModel::Ideal}, {"physical", LensModel::Physical}};
 
 CrystalIndices as_crystal(const json& v) {
-  if (!v.is_object()) throw BadValue{"expected {\"no\":..,\"ne\":..} or {\"nalpha\":..,\"nbeta\":..,\"ngamma\":..}"};
+  if (!v.is_object())
+    throw BadValue{"expected {\"no\":..,\"ne\":..} or {\"nalpha\":..,\"nbeta\":..,\"ngamma\":..}"};
   CrystalIndices c;
   if (v.contains("no") && v.contains("ne") && v.size() == 2) {
     c.uniaxial = true;
@@ -110,8 +110,7 @@ struct Key {
 
 const std::vector<Key>& keys() {
   static const std::vector<Key> k = {
-      {"mode",
-       [](Scene& s, const json& v) { s.mode = as_enum(v, kModes); },
+      {"mode", [](Scene& s, const json& v) { s.mode = as_enum(v, kModes); },
        [](const Scene& s) -> json { return enum_name(s.mode, kModes); }},
       {"polarizer_deg", [](Scene& s, const json& v) { s.polarizer_deg = as_number(v); },
        [](const Scene& s) -> json { return s.polarizer_deg; }},
@@ -128,8 +127,7 @@ const std::vector<Key>& keys() {
          if (!parse_illuminant(as_string(v), s.illuminant)) throw BadValue{"expected D65 or A"};
        },
        [](const Scene& s) -> json { return std::string(illuminant_name(s.illuminant)); }},
-      {"objective.magnification",
-       [](Scene& s, const json& v) { s.objective.magnification = as_number(v); },
+      {"objective.magnification", [](Scene& s, const json& v) { s.objective.magnification = as_number(v); },
        [](const Scene& s) -> json { return s.objective.magnification; }},
       {"objective.na", [](Scene& s, const json& v) { s.objective.na = as_number(v); },
        [](const Scene& s) -> json { return s.objective.na; }},
@@ -180,8 +178,7 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.sample.medium; }},
       {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
        [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
-      {"compensator_position",
-       [](Scene& s, const json& v) { s.compensator_position = as_number(v); },
+      {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },
        [](const Scene& s) -> json { return s.compensator_position; }},
       {"render.width", [](Scene& s, const json& v) { s.render.width = as_int(v); },
        [](const Scene& s) -> json { return s.render.width; }},
@@ -194,14 +191,11 @@ const std::vector<Key>& keys() {
       {"render.single_wavelength_nm",
        [](Scene& s, const json& v) { s.render.single_wavelength_nm = as_number(v); },
        [](const Scene& s) -> json { return s.render.single_wavelength_nm; }},
-      {"render.tolerance",
-       [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
+      {"render.tolerance", [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
        [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
-      {"render.strategy",
-       [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
+      {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
        [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
-      {"optics.lens_model",
-       [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
+      {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
        [](const Scene& s) -> json { return s.optics.lens_depth; }},
@@ -222,14 +216,12 @@ const Key* find_key(std::string_view path) {
 
 // The groups of dot paths: a value that is not an object there is a wrong type, not an unknown key.
 bool is_group(std::string_view key) {
-  return key == "objective" || key == "condenser" || key == "sample" || key == "render" ||
-         key == "optics";
+  return key == "objective" || key == "condenser" || key == "sample" || key == "render" || key == "optics";
 }
 
 // Keys that document a file rather than set anything.
 bool is_annotation(std::string_view key) {
-  return key == "source" || key == "description" || key == "comment" || key == "type" ||
-         key == "name";
+  return key == "source" || key == "description" || key == "comment" || key == "type" || key == "name";
 }
 
 void read_key(Scene& s, const Key& k, const json& v, const std::string& file, const std::string& raw) {
@@ -253,7 +245,7 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
   std::map<std::string, std::string> raw;  // key → its value as written, for messages
   // Flatten nested objects into dot paths; sample.crystal is a value, not a group.
   std::function<void(const json&, const std::string&)> walk = [&](const json& obj,
-                                                                const std::string& prefix) {
+                                                                  const std::string& prefix) {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       const std::string path = prefix.empty() ? it.key() : prefix + "." + it.key();
       if (const Key* k = find_key(path)) {
@@ -275,8 +267,7 @@ Scene scene_from_json(const json& j, const std::string& file, std::vector<std::s
   // sample.crystal replaces sample.mineral whatever their order in the file.
   if (j.contains("sample") && j["sample"].is_object() && j["sample"].contains("crystal") &&
       !j["sample"]["crystal"].is_null())
-    read_key(s, *find_key("sample.crystal"), j["sample"]["crystal"], file,
-             shown(j["sample"]["crystal"]));
+    read_key(s, *find_key("sample.crystal"), j["sample"]["crystal"], file, shown(j["sample"]["crystal"]));
   try {
     validate_scene(s, file);
   } catch (const InputError& e) {
@@ -300,10 +291,10 @@ json scene_to_json(const Scene& scene) {
     const json v = k.write(scene);
     if (v.is_null()) continue;
     j[json::json_pointer("/" + [&] {
-        std::string p = k.path;
-        std::replace(p.begin(), p.end(), '.', '/');
-        return p;
-      }())] = v;
+      std::string p = k.path;
+      std::replace(p.begin(), p.end(), '.', '/');
+      return p;
+    }())] = v;
   }
   return j;
 }

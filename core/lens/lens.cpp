@@ -51,8 +51,8 @@ double cap_sag_mm(double R, double r) {
 LensSpec lens_spec_from_json(const json& j, const std::string& file) {
   if (!j.is_object()) throw InputError(file, "", show(j).substr(0, 60), "a lens must be a JSON object");
   const JsonReader r(j, file);
-  r.refuse_unknown_keys({"glass", "center", "axis", "radius_mm", "front", "back", "ledge_mm",
-                         "thickness_mm", "medium", "source", "name", "description"});
+  r.refuse_unknown_keys({"glass", "center", "axis", "radius_mm", "front", "back", "ledge_mm", "thickness_mm",
+                         "medium", "source", "name", "description"});
   LensSpec s;
   s.file = file;
   s.glass = r.require<std::string>("glass");
@@ -64,8 +64,7 @@ LensSpec lens_spec_from_json(const json& j, const std::string& file) {
   s.back_radius_mm = get_cap(r, "back");
   s.ledge_mm = r.optional<double>("ledge_mm");
   s.thickness_mm = r.optional<double>("thickness_mm");
-  if (!s.ledge_mm && !s.thickness_mm)
-    throw InputError(file, "ledge_mm", "", "give ledge_mm or thickness_mm");
+  if (!s.ledge_mm && !s.thickness_mm) throw InputError(file, "ledge_mm", "", "give ledge_mm or thickness_mm");
   return s;
 }
 
@@ -130,9 +129,9 @@ LensGeometry::LensGeometry(const LensSpec& s) {
     thickness_ = *s.thickness_mm;
     ledge_ = ledge_from_thickness(thickness_, R_[0], R_[1], rho_);
     if (s.ledge_mm && std::abs(*s.ledge_mm - ledge_) > 1e-9)
-      throw InputError(f, "ledge_mm", num(*s.ledge_mm),
-                       "disagrees with thickness_mm " + num(thickness_) + " (implies ledge_mm " +
-                           num(ledge_) + ")");
+      throw InputError(
+          f, "ledge_mm", num(*s.ledge_mm),
+          "disagrees with thickness_mm " + num(thickness_) + " (implies ledge_mm " + num(ledge_) + ")");
   } else {
     ledge_ = *s.ledge_mm;
     thickness_ = ledge_ - sag2 + sag1;
@@ -141,15 +140,13 @@ LensGeometry::LensGeometry(const LensSpec& s) {
     throw InputError(f, s.thickness_mm ? "thickness_mm" : "ledge_mm",
                      num(s.thickness_mm ? *s.thickness_mm : *s.ledge_mm), "must be at most 1e6 mm");
   if (!(thickness_ > 0.0))
-    throw InputError(f, s.thickness_mm ? "thickness_mm" : "ledge_mm",
-                     num(s.thickness_mm ? *s.thickness_mm : *s.ledge_mm),
-                     "the caps cross on the axis (vertex-to-vertex thickness " + num(thickness_) +
-                         " mm must be > 0)");
+    throw InputError(
+        f, s.thickness_mm ? "thickness_mm" : "ledge_mm", num(s.thickness_mm ? *s.thickness_mm : *s.ledge_mm),
+        "the caps cross on the axis (vertex-to-vertex thickness " + num(thickness_) + " mm must be > 0)");
   if (!(ledge_ >= 0.0))
     throw InputError(f, s.ledge_mm ? "ledge_mm" : "thickness_mm",
                      num(s.ledge_mm ? *s.ledge_mm : *s.thickness_mm),
-                     "the caps cross inside the aperture (ledge height " + num(ledge_) +
-                         " mm must be ≥ 0)");
+                     "the caps cross inside the aperture (ledge height " + num(ledge_) + " mm must be ≥ 0)");
   vertex_[0] = center_ - 0.5 * thickness_ * axis_;
   vertex_[1] = center_ + 0.5 * thickness_ * axis_;
   for (int k = 0; k < 2; ++k) sphere_center_[k] = vertex_[k] + R_[k] * axis_;
@@ -158,8 +155,8 @@ LensGeometry::LensGeometry(const LensSpec& s) {
   scale_ = std::max({rho_, thickness_, ledge_});
 }
 
-bool LensGeometry::cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here,
-                           double t_eps, double& best, LensHit& hit) const {
+bool LensGeometry::cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
+                           double& best, LensHit& hit) const {
   const double R = R_[k];
   double ts[2];
   int nt = 0;
@@ -210,8 +207,8 @@ bool LensGeometry::cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool
   return found;
 }
 
-bool LensGeometry::ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here,
-                             double t_eps, double& best, LensHit& hit) const {
+bool LensGeometry::ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
+                             double& best, LensHit& hit) const {
   if (ledge_ <= 0.0) return false;
   const glm::dvec3 w = o - center_;
   const glm::dvec3 wp = w - glm::dot(w, axis_) * axis_;
@@ -244,8 +241,8 @@ bool LensGeometry::ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from
   return found;
 }
 
-bool LensGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max,
-                             LensSurface from, LensHit& hit) const {
+bool LensGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max, LensSurface from,
+                             LensHit& hit) const {
   double best = t_max;
   // Rays starting on the lens skip their own surface analytically; the tiny t_eps only guards
   // the rim, where a ray leaving one surface starts on another as well.
@@ -283,8 +280,7 @@ Lens::Lens(const LensSpec& spec, const Medium& glass, const Medium& medium)
     : spec_(spec), geometry_(spec), glass_(&glass), medium_(&medium) {}
 
 LensMedia Lens::media(double wavelength_nm) const {
-  return {glass_->n(wavelength_nm), medium_->n(wavelength_nm),
-          glass_->attenuation_per_mm(wavelength_nm)};
+  return {glass_->n(wavelength_nm), medium_->n(wavelength_nm), glass_->attenuation_per_mm(wavelength_nm)};
 }
 
 }  // namespace pmsim

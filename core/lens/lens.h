@@ -37,7 +37,7 @@ nlohmann::json lens_spec_to_json(const LensSpec& spec);
 enum class LensSurface : int { None = -1, Front = 0, Back = 1, Ledge = 2 };
 
 struct LensHit {
-  double t = 0.0;         // distance along the (unit) direction
+  double t = 0.0;  // distance along the (unit) direction
   glm::dvec3 point{0.0};
   glm::dvec3 normal{0.0};  // unit, pointing out of the glass
   LensSurface surface = LensSurface::None;
@@ -74,16 +74,16 @@ class LensGeometry {
   double size_mm() const { return scale_; }  // a length of the order of the lens' size
 
  private:
-  bool cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
-               double& best, LensHit& hit) const;
-  bool ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
-                 double& best, LensHit& hit) const;
+  bool cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps, double& best,
+               LensHit& hit) const;
+  bool ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps, double& best,
+                 LensHit& hit) const;
   glm::dvec3 center_, axis_;
   double rho_ = 0, thickness_ = 0, ledge_ = 0, scale_ = 1;
-  double R_[2] = {0, 0};          // front, back signed radii
-  glm::dvec3 vertex_[2];          // front, back vertices
-  glm::dvec3 sphere_center_[2];   // vertex + R·axis
-  double z_edge_[2] = {0, 0};     // axial coordinate (from center) of each cap's rim
+  double R_[2] = {0, 0};         // front, back signed radii
+  glm::dvec3 vertex_[2];         // front, back vertices
+  glm::dvec3 sphere_center_[2];  // vertex + R·axis
+  double z_edge_[2] = {0, 0};    // axial coordinate (from center) of each cap's rim
 };
 
 // Optical constants of a lens at one wavelength, looked up once per traced ray.

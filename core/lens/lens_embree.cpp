@@ -33,8 +33,7 @@ bool hit_lens(const LensGeometry& lens, RTCRayN* ray, unsigned N, unsigned i, Le
   const double tfar = RTCRayN_tfar(ray, N, i);
   if (!(tfar > tnear)) return false;
   const glm::dvec3 dn = d / len;
-  if (!lens.intersect(o + (tnear * len) * dn, dn, (tfar - tnear) * len, LensSurface::None, h))
-    return false;
+  if (!lens.intersect(o + (tnear * len) * dn, dn, (tfar - tnear) * len, LensSurface::None, h)) return false;
   t = tnear + h.t / len;
   return t < tfar;
 }

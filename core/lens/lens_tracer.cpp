@@ -11,10 +11,14 @@ namespace pmsim {
 
 const char* to_string(LensEvent::Type t) {
   switch (t) {
-    case LensEvent::Type::Tir: return "tir";
-    case LensEvent::Type::Ledge: return "ledge";
-    case LensEvent::Type::DepthLimit: return "depth_limit";
-    case LensEvent::Type::Miss: return "miss";
+    case LensEvent::Type::Tir:
+      return "tir";
+    case LensEvent::Type::Ledge:
+      return "ledge";
+    case LensEvent::Type::DepthLimit:
+      return "depth_limit";
+    case LensEvent::Type::Miss:
+      return "miss";
   }
   return "?";
 }
@@ -175,8 +179,7 @@ void trace_lens(const LensGeometry& g, const LensMedia& m, const PolarizedRay& i
   trace_one(g, m, r, opt, out);
 }
 
-void trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt,
-                LensBundle& out) {
+void trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt, LensBundle& out) {
   trace_lens(lens.geometry(), lens.media(in.wavelength_nm), in, opt, out);
 }
 
@@ -187,8 +190,8 @@ LensBundle trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceO
 }
 
 void trace_lens_return(const LensGeometry& g, const LensMedia& m, const PolarizedRay& eye_ray,
-                       const PolarizedRay& outgoing, const PolarizedRay& light,
-                       const LensTraceOptions& opt, LensBundle& out) {
+                       const PolarizedRay& outgoing, const PolarizedRay& light, const LensTraceOptions& opt,
+                       LensBundle& out) {
   PolarizedRay l = light;
   l.dir = -glm::normalize(outgoing.dir);
   // Start a little outside the exit point so the entry hit is found robustly (1e-6 of the lens

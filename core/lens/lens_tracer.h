@@ -62,18 +62,18 @@ struct LensTraceOptions {
 struct LensEvent {
   enum class Type : std::uint8_t { Tir, Ledge, DepthLimit, Miss };
   Type type = Type::Miss;
-  int depth = 0;             // depth of the ray arriving (DepthLimit: of the untraced part)
-  double intensity = 0.0;    // intensity arriving at `point`
-  glm::dvec3 point{0.0};     // Miss: the ray origin
+  int depth = 0;           // depth of the ray arriving (DepthLimit: of the untraced part)
+  double intensity = 0.0;  // intensity arriving at `point`
+  glm::dvec3 point{0.0};   // Miss: the ray origin
 };
 const char* to_string(LensEvent::Type t);  // "tir", "ledge", "depth_limit", "miss"
 
 struct LensBundle {
   std::vector<PolarizedRay> rays;  // outgoing, each linearly polarized; origin on the lens
   std::vector<LensEvent> events;
-  double absorbed = 0.0;   // Beer–Lambert loss inside the glass
-  double filtered = 0.0;   // outgoing intensity dropped by LensTraceOptions::keep
-  double incident = 0.0;   // sum of the input intensities traced into this bundle
+  double absorbed = 0.0;  // Beer–Lambert loss inside the glass
+  double filtered = 0.0;  // outgoing intensity dropped by LensTraceOptions::keep
+  double incident = 0.0;  // sum of the input intensities traced into this bundle
   bool ray_limit_reached = false;
 
   void clear() {
@@ -92,11 +92,10 @@ struct LensBundle {
 // before it reached the lens, not an Embree hit point on it); an origin strictly inside the glass
 // is traced from there without an entry interaction. in.pol is re-orthonormalized to in.dir.
 // If the outside medium is denser and P1 totally reflects, the two linear parts are outgoing
-// depth-0 rays (they never enter the glass), not a Tir event. The appending overload adds to `out` without clearing it
-// (reuse one bundle across calls: no allocation once its vectors have grown).
+// depth-0 rays (they never enter the glass), not a Tir event. The appending overload adds to `out` without
+// clearing it (reuse one bundle across calls: no allocation once its vectors have grown).
 LensBundle trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt);
-void trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt,
-                LensBundle& out);
+void trace_lens(const Lens& lens, const PolarizedRay& in, const LensTraceOptions& opt, LensBundle& out);
 // Same with the optical constants given directly (no material library needed).
 void trace_lens(const LensGeometry& lens, const LensMedia& media, const PolarizedRay& in,
                 const LensTraceOptions& opt, LensBundle& out);
@@ -106,8 +105,8 @@ void trace_lens(const LensGeometry& lens, const LensMedia& media, const Polarize
 // (its origin, dir are ignored; pol must be ⟂ outgoing.dir). Light is traced through the lens
 // forward, and the rays leaving along −eye_ray.dir (within 1e-9 rad) with depth outgoing.depth are
 // appended to `out` (other branches count as `filtered`): the light reaching the eye via that path.
-void trace_lens_return(const LensGeometry& lens, const LensMedia& media,
-                       const PolarizedRay& eye_ray, const PolarizedRay& outgoing,
-                       const PolarizedRay& light, const LensTraceOptions& opt, LensBundle& out);
+void trace_lens_return(const LensGeometry& lens, const LensMedia& media, const PolarizedRay& eye_ray,
+                       const PolarizedRay& outgoing, const PolarizedRay& light, const LensTraceOptions& opt,
+                       LensBundle& out);
 
 }  // namespace pmsim

@@ -22,8 +22,8 @@ std::string format_nm(double nm) {
 void Medium::check_range(double wavelength_nm, const char* what) const {
   if (!(wavelength_nm > 0.0 && wavelength_nm >= min_nm_ && wavelength_nm <= max_nm_)) {
     throw std::out_of_range(name_ + ": " + what + " at wavelength " + format_nm(wavelength_nm) +
-                            " nm is outside the data range " + format_nm(min_nm_) + "-" +
-                            format_nm(max_nm_) + " nm");
+                            " nm is outside the data range " + format_nm(min_nm_) + "-" + format_nm(max_nm_) +
+                            " nm");
   }
 }
 
@@ -45,18 +45,15 @@ double Medium::n(double wavelength_nm) const {
   return n0_;
 }
 
-double Medium::abbe_vd() const {
-  return (nd() - 1.0) / (n(486.1327) - n(656.2725));
-}
+double Medium::abbe_vd() const { return (nd() - 1.0) / (n(486.1327) - n(656.2725)); }
 
 double Medium::attenuation_per_mm(double wavelength_nm) const {
   check_range(wavelength_nm, "attenuation");
   if (mu_wl_nm_.empty()) return mu_const_per_mm_;
   if (!(wavelength_nm >= mu_wl_nm_.front() && wavelength_nm <= mu_wl_nm_.back())) {
     throw std::out_of_range(name_ + ": attenuation at wavelength " + format_nm(wavelength_nm) +
-                            " nm is outside the transmittance data " +
-                            format_nm(mu_wl_nm_.front()) + "-" + format_nm(mu_wl_nm_.back()) +
-                            " nm");
+                            " nm is outside the transmittance data " + format_nm(mu_wl_nm_.front()) + "-" +
+                            format_nm(mu_wl_nm_.back()) + " nm");
   }
   if (mu_wl_nm_.size() == 1) return mu_per_mm_.front();
   // Linear interpolation of μ between the catalogue's wavelengths.
@@ -68,7 +65,8 @@ double Medium::attenuation_per_mm(double wavelength_nm) const {
 }
 
 Medium Medium::constant(std::string name, double n, double attenuation_per_mm) {
-  if (!std::isfinite(n) || n < 1.0) throw std::invalid_argument(name + ": refractive index must be finite and >= 1");
+  if (!std::isfinite(n) || n < 1.0)
+    throw std::invalid_argument(name + ": refractive index must be finite and >= 1");
   if (!std::isfinite(attenuation_per_mm) || attenuation_per_mm < 0.0) {
     throw std::invalid_argument(name + ": attenuation must be finite and >= 0");
   }
@@ -112,7 +110,8 @@ Medium Medium::cauchy(std::string name, double A, double B_nm2) {
 
 void Medium::set_attenuation_table(std::vector<double> wavelength_nm, std::vector<double> mu_per_mm) {
   if (wavelength_nm.empty() || wavelength_nm.size() != mu_per_mm.size()) {
-    throw std::invalid_argument(name_ + ": attenuation table needs equally many (>= 1) wavelengths and values");
+    throw std::invalid_argument(name_ +
+                                ": attenuation table needs equally many (>= 1) wavelengths and values");
   }
   for (std::size_t i = 0; i < wavelength_nm.size(); ++i) {
     if (!std::isfinite(wavelength_nm[i]) || wavelength_nm[i] <= 0.0 ||

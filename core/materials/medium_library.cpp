@@ -81,9 +81,19 @@ class Reader {
 constexpr double kMaxIndex = 5.0;
 
 // Keys a material file may hold; anything else is a typo and reported as such.
-const std::set<std::string> kKnownKeys = {
-    "name", "source", "model", "n", "B", "C_um2", "A", "B_nm2", "wavelength_range_nm",
-    "attenuation_per_mm", "internal_transmittance", "catalogue", "note"};
+const std::set<std::string> kKnownKeys = {"name",
+                                          "source",
+                                          "model",
+                                          "n",
+                                          "B",
+                                          "C_um2",
+                                          "A",
+                                          "B_nm2",
+                                          "wavelength_range_nm",
+                                          "attenuation_per_mm",
+                                          "internal_transmittance",
+                                          "catalogue",
+                                          "note"};
 
 }  // namespace
 
@@ -170,8 +180,8 @@ Medium load_medium_file(const std::string& path) {
       if (nm <= 0.0 || nm < m.min_wavelength_nm() || nm > m.max_wavelength_nm()) continue;
       const double n = m.n(nm);
       if (!std::isfinite(n) || (gas ? n < 1.0 : n <= 1.0) || n > kMaxIndex) {
-        r.fail("model", root["model"], "gives n = " + std::to_string(n) + " at " +
-                                           std::to_string(nm) + " nm");
+        r.fail("model", root["model"],
+               "gives n = " + std::to_string(n) + " at " + std::to_string(nm) + " nm");
       }
     }
     check_poles();

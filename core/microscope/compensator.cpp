@@ -9,9 +9,7 @@ namespace pmsim {
 
 namespace {
 // Columns: crystal X, Y, Z in the lab.
-glm::dmat3 axes(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z) {
-  return glm::dmat3(x, y, z);
-}
+glm::dmat3 axes(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z) { return glm::dmat3(x, y, z); }
 }  // namespace
 
 CompensatorPlate make_compensator(Compensator kind, double position) {

@@ -13,7 +13,7 @@ namespace pmsim {
 
 struct CompensatorPlate {
   bool present = false;
-  PlateSpec spec;            // normal incidence, no Fresnel (cemented between glasses)
+  PlateSpec spec;                      // normal incidence, no Fresnel (cemented between glasses)
   double design_retardation_nm = 0.0;  // Γ at 550 nm
 };
 

@@ -49,7 +49,8 @@ EvaluationPlan EvaluationPlan::with_modal_terms(std::vector<ModalTerms> terms) c
   return plan;
 }
 
-std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene, const std::atomic<bool>* cancel) {
+std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene,
+                                                              const std::atomic<bool>* cancel) {
   check_scene(scene);
   std::shared_ptr<EvaluationPlan> plan(new EvaluationPlan(scene));
   plan->domains_ = optical_domains(scene);
@@ -67,8 +68,8 @@ std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene
     if (!modal) return nullptr;
     plan->modal_ = std::move(*modal);
     policy.radial_table = plan->modal_.radial_table;
-    policy.exact_units =
-        static_cast<std::size_t>(std::count(plan->modal_.unit_exact.begin(), plan->modal_.unit_exact.end(), 1));
+    policy.exact_units = static_cast<std::size_t>(
+        std::count(plan->modal_.unit_exact.begin(), plan->modal_.unit_exact.end(), 1));
   }
   if (policy.lenses && scene.optics.lens_depth >= 2 && plan->view_kind() == ViewKind::ConoscopicFigure) {
     LensGhostImage ghosts = lens_ghost_image(*plan, cancel);

@@ -47,9 +47,13 @@ class EvaluationPlan {
   // Stage 2: the view.
   ViewKind view_kind() const { return view_.kind; }
   const std::vector<EvalUnit>& units() const { return view_.units; }
-  const std::vector<int>& pixel_offset() const { return view_.pixel_offset; }  // refs of pixel i: [offset[i], offset[i+1])
+  const std::vector<int>& pixel_offset() const {
+    return view_.pixel_offset;
+  }  // refs of pixel i: [offset[i], offset[i+1])
   const std::vector<PixelRef>& refs() const { return view_.refs; }
-  bool pixel_lit(std::size_t pixel) const { return view_.pixel_offset[pixel + 1] > view_.pixel_offset[pixel]; }
+  bool pixel_lit(std::size_t pixel) const {
+    return view_.pixel_offset[pixel + 1] > view_.pixel_offset[pixel];
+  }
   const std::vector<glm::dvec3>& cone_dirs() const { return view_.cone_dirs; }
   int spatial_samples() const { return view_.spatial_samples; }
   int dirs_of(const EvalUnit& u) const { return u.cone ? static_cast<int>(view_.cone_dirs.size()) : 1; }
@@ -66,10 +70,13 @@ class EvaluationPlan {
   JonesMatrix with_lenses(const JonesMatrix& sample, const glm::dvec3& k_air) const;
 
   // Stage 4: the modal fits (modal plate model; empty for the exact one).
-  const std::vector<ModalTerms>& modal_terms() const { return modal_.terms; }  // unit u, direction d at u*dirs_per_unit+d
+  const std::vector<ModalTerms>& modal_terms() const {
+    return modal_.terms;
+  }  // unit u, direction d at u*dirs_per_unit+d
   int dirs_per_unit() const { return modal_.dirs_per_unit; }
   bool needs_exact(int unit) const {
-    return policy_.plate_model == PlateModel::Exact || (!modal_.unit_exact.empty() && modal_.unit_exact[unit]);
+    return policy_.plate_model == PlateModel::Exact ||
+           (!modal_.unit_exact.empty() && modal_.unit_exact[unit]);
   }
   bool any_exact() const { return policy_.plate_model == PlateModel::Exact || policy_.exact_units > 0; }
 
@@ -85,7 +92,8 @@ class EvaluationPlan {
   EvaluationPlan with_modal_terms(std::vector<ModalTerms> terms) const;
 
  private:
-  friend std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene&, const std::atomic<bool>*);
+  friend std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene&,
+                                                                       const std::atomic<bool>*);
   explicit EvaluationPlan(const Scene& scene) : scene_(scene) {}
 
   Scene scene_;

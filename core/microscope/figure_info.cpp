@@ -12,7 +12,9 @@ namespace pmsim {
 
 namespace {
 // Angle between an axis (either sense) and the microscope axis z.
-double tilt_deg(const glm::dvec3& v) { return degrees(std::acos(std::min(1.0, std::fabs(glm::normalize(v).z)))); }
+double tilt_deg(const glm::dvec3& v) {
+  return degrees(std::acos(std::min(1.0, std::fabs(glm::normalize(v).z))));
+}
 std::string fmt(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
@@ -37,13 +39,15 @@ FigureInfo describe_figure(const Scene& scene_in) {
   }
   const glm::dmat3& R = D.crystal_to_lab;  // columns X, Y, Z in the lab (stage applied)
   const glm::dvec3 n = D.crystal->principal_indices(589.3);
-  const std::string comp = scene.compensator == Compensator::Gypsum ? "gypsum plate"
-                           : scene.compensator == Compensator::Mica ? "mica plate"
+  const std::string comp = scene.compensator == Compensator::Gypsum        ? "gypsum plate"
+                           : scene.compensator == Compensator::Mica        ? "mica plate"
                            : scene.compensator == Compensator::QuartzWedge ? "quartz wedge"
-                                                                         : "a compensator";
+                                                                           : "a compensator";
   const bool gypsum_like = scene.compensator != Compensator::QuartzWedge;
-  const std::string add = gypsum_like ? "addition (colours rise: blue with gypsum)" : "addition (isochromes move in)";
-  const std::string sub = gypsum_like ? "subtraction (colours fall: yellow with gypsum)" : "subtraction (isochromes move out)";
+  const std::string add =
+      gypsum_like ? "addition (colours rise: blue with gypsum)" : "addition (isochromes move in)";
+  const std::string sub =
+      gypsum_like ? "subtraction (colours fall: yellow with gypsum)" : "subtraction (isochromes move out)";
   switch (D.crystal->symmetry()) {
     case CrystalSymmetry::Isotropic:
       f.kind = "isotropic";
@@ -55,10 +59,10 @@ FigureInfo describe_figure(const Scene& scene_in) {
       f.optic_sign = positive ? "positive" : "negative";
       f.axis_tilt_deg = tilt_deg(R[2]);
       const double sin_e = n.x * std::sin(radians(f.axis_tilt_deg));
-      f.orientation = f.axis_tilt_deg < 5     ? "centred optic-axis figure"
+      f.orientation = f.axis_tilt_deg < 5          ? "centred optic-axis figure"
                       : sin_e < scene.objective.na ? "off-centre optic-axis figure (melatope in the field)"
-                      : f.axis_tilt_deg > 75 ? "flash figure (optic axis near the stage plane)"
-                                             : "off-centre figure (melatope outside the field)";
+                      : f.axis_tilt_deg > 75       ? "flash figure (optic axis near the stage plane)"
+                                                   : "off-centre figure (melatope outside the field)";
       // In the NE and SW quadrants the extraordinary wave vibrates radially, i.e. NE–SW, parallel
       // to the accessory's slow direction; it is the slow wave when the crystal is positive.
       f.compensator = (positive ? add : sub) + " in the NE and SW quadrants, " + (positive ? sub : add) +

@@ -15,8 +15,9 @@ struct FigureInfo {
   double two_v_deg = 0.0;      // biaxial: 2V about the acute bisectrix; uniaxial 0
   double axis_tilt_deg = 0.0;  // optic axis (uniaxial) / acute bisectrix (biaxial) from the microscope axis
   std::string orientation;     // e.g. "centred optic-axis figure", "acute bisectrix figure", "flash figure"
-  std::string compensator;     // what the accessory shows, e.g. "addition (blue) in the NE and SW quadrants → positive"
-  std::string summary;         // one line with all of the above
+  std::string
+      compensator;  // what the accessory shows, e.g. "addition (blue) in the NE and SW quadrants → positive"
+  std::string summary;  // one line with all of the above
 };
 
 // Throws InputError for an invalid scene.

@@ -26,7 +26,7 @@ namespace pmsim {
 
 namespace {
 constexpr double kLensNm = kPhysicalLensNm;
-constexpr int kBands = 8;                    // 50 nm: the ghost is ~0.2 % of the light
+constexpr int kBands = 8;  // 50 nm: the ghost is ~0.2 % of the light
 constexpr int kMaxGridSide = 128;
 
 LensGhostTable trace_ghosts(int depth, FresnelModel fresnel) {
@@ -93,12 +93,11 @@ glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) {
   return {c * v.x - s * v.y, s * v.x + c * v.y, v.z};
 }
 
-
 // One ghost path as a Jones matrix from transverse_basis(k_in) to transverse_basis(k_out):
 // out = a_s·(in·ŝ) ŝ_out + a_p·(in·p̂_in) p̂_out, the s/p eigen-amplitudes a of the meridional
 // path (complex, phase 2π·O_p/λ − δ).
-JonesMatrix path_jones(const glm::dvec3& k_in, const glm::dvec3& k_out, const glm::dvec3& s_hat,
-                       complexd a_s, complexd a_p) {
+JonesMatrix path_jones(const glm::dvec3& k_in, const glm::dvec3& k_out, const glm::dvec3& s_hat, complexd a_s,
+                       complexd a_p) {
   glm::dvec3 ai, bi, ao, bo;
   transverse_basis(k_in, ai, bi);
   transverse_basis(k_out, ao, bo);
@@ -134,7 +133,8 @@ GhostBands ghost_bands(const Scene& scene) {
   for (int b = 0; b < kBands; ++b) {
     const double lo_nm = kVisibleMinNm + b * bands.width_nm;
     glm::dvec3 w(0.0);
-    for (int s = 0; s < 50; ++s) w += observer_weight(scene.illuminant, lo_nm + (s + 0.5) * bands.width_nm / 50);
+    for (int s = 0; s < 50; ++s)
+      w += observer_weight(scene.illuminant, lo_nm + (s + 0.5) * bands.width_nm / 50);
     bands.centre_nm.push_back(lo_nm + 0.5 * bands.width_nm);
     bands.xyz_weight.push_back(w);
     sum += w;
@@ -216,7 +216,7 @@ struct SourceDirection {
 
 // Where one ghost path of a source direction lands.
 struct GhostHit {
-  glm::dvec3 k_ghost;  // exit direction in the lab (the profile's path rotated to k's azimuth)
+  glm::dvec3 k_ghost;     // exit direction in the lab (the profile's path rotated to k's azimuth)
   double grid_x, grid_y;  // target in coarse-grid coordinates
   bool in_objective, in_condenser;
 };
@@ -242,7 +242,8 @@ void place_ghosts(const GhostInputs& in, const SourceDirection& src, const std::
     const double rho = sg / in.scene.objective.na;
     h.in_objective = rho <= 1.0;
     h.in_condenser = sg <= in.scene.condenser.na;
-    const double fx = sg > 1e-12 ? rho * h.k_ghost.x / sg : 0.0, fy = sg > 1e-12 ? rho * h.k_ghost.y / sg : 0.0;
+    const double fx = sg > 1e-12 ? rho * h.k_ghost.x / sg : 0.0,
+                 fy = sg > 1e-12 ? rho * h.k_ghost.y / sg : 0.0;
     h.grid_x = (fx * grid.disk_radius_px + 0.5 * grid.width_px) / grid.stride_px - 0.5;
     h.grid_y = (0.5 * grid.height_px - fy * grid.disk_radius_px) / grid.stride_px - 0.5;
     hits.push_back(h);
@@ -272,28 +273,32 @@ void band_amplitudes(const SourceDirection& src, const TrainState& train, const 
       // The Bertrand side sees the ghost in the lab frame: the aplanatic mapping of k_g.
       const JonesMatrix M = jones_from_real(glm::transpose(aplanatic_frame(hit.k_ghost))) * G * sample_jones *
                             jones_from_real(src.condenser_lens);
-      for (int o = 0; o < train.outputs; ++o) scratch.amp_objective[i * train.outputs + o] = jones_output(train, M, o).x;
+      for (int o = 0; o < train.outputs; ++o)
+        scratch.amp_objective[i * train.outputs + o] = jones_output(train, M, o).x;
     }
     // Condenser ghost (reciprocal path): aperture direction k_g → specimen along k →
     // sample → objective (depth 0) → this cell.
     if (hit.in_condenser) {
       const JonesMatrix G = path_jones(hit.k_ghost, src.k, src.s_hat, a_s, a_p);
-      const JonesMatrix M = jones_from_real(src.objective_lens) * sample_jones * G * jones_from_real(aplanatic_frame(hit.k_ghost));
-      for (int o = 0; o < train.outputs; ++o) scratch.amp_condenser[i * train.outputs + o] = jones_output(train, M, o).x;
+      const JonesMatrix M = jones_from_real(src.objective_lens) * sample_jones * G *
+                            jones_from_real(aplanatic_frame(hit.k_ghost));
+      for (int o = 0; o < train.outputs; ++o)
+        scratch.amp_condenser[i * train.outputs + o] = jones_output(train, M, o).x;
     }
   }
 }
 
 // Intensity of a group of objective ghosts landing in one cell: |Σ a|² with the cross terms
 // band-averaged, sinc(π·ΔO_p·Δλ/λ²) (a flat band of width Δλ around λ).
-double coherent_group_intensity(const std::vector<LensGhostPath>& paths, const CellScratch& scratch, int outputs,
-                                double wavelength_nm, double band_width_nm) {
+double coherent_group_intensity(const std::vector<LensGhostPath>& paths, const CellScratch& scratch,
+                                int outputs, double wavelength_nm, double band_width_nm) {
   const std::vector<std::size_t>& group = scratch.group;
   double intensity = 0.0;
   for (int o = 0; o < outputs; ++o)
     for (std::size_t a = 0; a < group.size(); ++a)
       for (std::size_t c = a; c < group.size(); ++c) {
-        const complexd x = scratch.amp_objective[group[a] * outputs + o], y = scratch.amp_objective[group[c] * outputs + o];
+        const complexd x = scratch.amp_objective[group[a] * outputs + o],
+                       y = scratch.amp_objective[group[c] * outputs + o];
         if (a == c) {
           intensity += std::norm(x);
         } else {
@@ -307,8 +312,9 @@ double coherent_group_intensity(const std::vector<LensGhostPath>& paths, const C
 
 // Objective: paths of this ch landing in the same cell add coherently; each group's intensity is
 // spread bilinearly around its target (into this source row's splat list: rows run in parallel).
-void splat_objective_ghosts(const GhostInputs& in, std::size_t band, int outputs, const std::vector<LensGhostPath>& paths,
-                            CellScratch& scratch, std::vector<std::pair<int, glm::dvec3>>& row_splats) {
+void splat_objective_ghosts(const GhostInputs& in, std::size_t band, int outputs,
+                            const std::vector<LensGhostPath>& paths, CellScratch& scratch,
+                            std::vector<std::pair<int, glm::dvec3>>& row_splats) {
   const GhostGrid& grid = in.grid;
   const std::vector<GhostHit>& hits = scratch.hits;
   scratch.grouped.assign(paths.size(), 0);
@@ -317,7 +323,8 @@ void splat_objective_ghosts(const GhostInputs& in, std::size_t band, int outputs
     const long ci = std::lround(hits[i].grid_x), cj = std::lround(hits[i].grid_y);
     scratch.group.clear();
     for (std::size_t j = i; j < paths.size(); ++j)
-      if (!scratch.grouped[j] && hits[j].in_objective && std::lround(hits[j].grid_x) == ci && std::lround(hits[j].grid_y) == cj) {
+      if (!scratch.grouped[j] && hits[j].in_objective && std::lround(hits[j].grid_x) == ci &&
+          std::lround(hits[j].grid_y) == cj) {
         scratch.group.push_back(j);
         scratch.grouped[j] = 1;
       }
@@ -339,8 +346,8 @@ void splat_objective_ghosts(const GhostInputs& in, std::size_t band, int outputs
 
 // All ghosts of the source direction at cell (cx, cy): objective ghosts into row_splats,
 // condenser ghosts (which land on the cell itself) into cell_xyz[cell][1]. Returns the paths used.
-int add_cell_ghosts(const GhostInputs& in, int cx, int cy, CellScratch& scratch, std::vector<glm::dvec3>& cell_xyz,
-                    std::vector<std::pair<int, glm::dvec3>>& row_splats) {
+int add_cell_ghosts(const GhostInputs& in, int cx, int cy, CellScratch& scratch,
+                    std::vector<glm::dvec3>& cell_xyz, std::vector<std::pair<int, glm::dvec3>>& row_splats) {
   const GhostGrid& grid = in.grid;
   const double px = std::min((cx + 0.5) * grid.stride_px, grid.width_px - 0.5);
   const double py = std::min((cy + 0.5) * grid.stride_px, grid.height_px - 0.5);
@@ -368,7 +375,8 @@ int add_cell_ghosts(const GhostInputs& in, int cx, int cy, CellScratch& scratch,
 
 // Bilinear upsampling of the [objective, condenser] cells to the pixels inside the
 // back-focal-plane disk, summing the energies on the way.
-void upsample_to_pixels(const GhostGrid& grid, const std::vector<glm::dvec3>& cell_xyz, bool mono, LensGhostImage& img) {
+void upsample_to_pixels(const GhostGrid& grid, const std::vector<glm::dvec3>& cell_xyz, bool mono,
+                        LensGhostImage& img) {
   const int W = grid.width_px, H = grid.height_px, GW = grid.cells_x, GH = grid.cells_y;
   img.xyz.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
   for (int y = 0; y < H; ++y)
@@ -377,7 +385,8 @@ void upsample_to_pixels(const GhostGrid& grid, const std::vector<glm::dvec3>& ce
       if (std::hypot(f.x, f.y) > 1.0) continue;
       const double gx = std::clamp((x + 0.5) / grid.stride_px - 0.5, 0.0, GW - 1.0);
       const double gy = std::clamp((y + 0.5) / grid.stride_px - 0.5, 0.0, GH - 1.0);
-      const int x0 = std::min(static_cast<int>(gx), std::max(0, GW - 2)), y0 = std::min(static_cast<int>(gy), std::max(0, GH - 2));
+      const int x0 = std::min(static_cast<int>(gx), std::max(0, GW - 2)),
+                y0 = std::min(static_cast<int>(gy), std::max(0, GH - 2));
       const double fx = GW > 1 ? gx - x0 : 0.0, fy = GH > 1 ? gy - y0 : 0.0;
       glm::dvec3 v[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
       for (int dy = 0; dy < 2; ++dy)
@@ -391,7 +400,8 @@ void upsample_to_pixels(const GhostGrid& grid, const std::vector<glm::dvec3>& ce
       const glm::dvec3 sum = v[0] + v[1];
       for (int c = 0; c < 3; ++c) {
         const double val = mono ? sum.y : sum[c];
-        img.xyz[(static_cast<std::size_t>(y) * W + x) * 3 + c] = std::isfinite(val) ? static_cast<float>(val) : 0.0f;
+        img.xyz[(static_cast<std::size_t>(y) * W + x) * 3 + c] =
+            std::isfinite(val) ? static_cast<float>(val) : 0.0f;
       }
     }
 }
@@ -427,14 +437,16 @@ LensGhostImage lens_ghost_image(const EvaluationPlan& plan, const std::atomic<bo
 
   // [cell][objective, condenser] XYZ; objective ghosts land in other cells, so they are collected
   // per source row and added in row order after the parallel loop (deterministic sums).
-  std::vector<glm::dvec3> cell_xyz(static_cast<std::size_t>(grid.cells_x) * grid.cells_y * 2, glm::dvec3(0.0));
+  std::vector<glm::dvec3> cell_xyz(static_cast<std::size_t>(grid.cells_x) * grid.cells_y * 2,
+                                   glm::dvec3(0.0));
   std::vector<std::vector<std::pair<int, glm::dvec3>>> splats(grid.cells_y);
   std::vector<int> row_paths(grid.cells_y, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, grid.cells_y, 2), [&](const tbb::blocked_range<int>& rows) {
     CellScratch scratch;
     for (int cy = rows.begin(); cy != rows.end(); ++cy) {
       if (cancel && cancel->load(std::memory_order_relaxed)) return;
-      for (int cx = 0; cx < grid.cells_x; ++cx) row_paths[cy] += add_cell_ghosts(in, cx, cy, scratch, cell_xyz, splats[cy]);
+      for (int cx = 0; cx < grid.cells_x; ++cx)
+        row_paths[cy] += add_cell_ghosts(in, cx, cy, scratch, cell_xyz, splats[cy]);
     }
   });
   if (cancel && cancel->load()) return img;

@@ -32,9 +32,10 @@ class EvaluationPlan;
 
 struct LensGhostPath {
   glm::dvec3 dir{0.0, 0.0, 1.0};  // exit direction, meridional plane y = 0 (azimuth 0)
-  glm::dvec3 field_s{0.0};        // √I·pol leaving for a unit s input (pol ŷ), relative to the axial depth-0 amplitude
-  glm::dvec3 field_p{0.0};        // the same for a unit p input (p = s × k)
-  double optical_path_mm = 0.0;   // O_p through the lens
+  glm::dvec3 field_s{
+      0.0};  // √I·pol leaving for a unit s input (pol ŷ), relative to the axial depth-0 amplitude
+  glm::dvec3 field_p{0.0};                      // the same for a unit p input (p = s × k)
+  double optical_path_mm = 0.0;                 // O_p through the lens
   double delta_s_rad = 0.0, delta_p_rad = 0.0;  // TIR phase jumps met (δ)
   int depth = 2;
 };
@@ -52,10 +53,10 @@ struct LensGhostTable {
 const LensGhostTable& lens_ghost_table(int depth, FresnelModel fresnel);
 
 struct LensGhostImage {
-  std::vector<float> xyz;          // width*height*3, added to the direct light (mono: T, T, T)
-  double objective_energy = 0.0;   // Σ ghost intensity over the image, objective paths
-  double condenser_energy = 0.0;   // the same, condenser paths
-  int paths = 0;                   // ghost paths used
+  std::vector<float> xyz;         // width*height*3, added to the direct light (mono: T, T, T)
+  double objective_energy = 0.0;  // Σ ghost intensity over the image, objective paths
+  double condenser_energy = 0.0;  // the same, condenser paths
+  int paths = 0;                  // ghost paths used
 };
 
 // The ghost light of a conoscopic (Bertrand in) plan with physical lenses and dT ≥ 2; empty xyz

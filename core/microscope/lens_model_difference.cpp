@@ -35,7 +35,8 @@ double lens_model_difference(const EvaluationPlan& plan, const LensPolarizationT
       // (as EvaluationPlan::lens_jones).
       const glm::dmat2 frame = aplanatic_frame(k), frame_back = glm::transpose(frame), lens = table.jones(k);
       const JonesMatrix ideal_in = jones_from_real(frame), ideal_out = jones_from_real(frame_back);
-      const JonesMatrix physical_in = jones_from_real(lens * frame), physical_out = jones_from_real(frame_back * lens);
+      const JonesMatrix physical_in = jones_from_real(lens * frame),
+                        physical_out = jones_from_real(frame_back * lens);
       const double ideal = jones_transmission(train, ideal_out * sample * ideal_in);
       const double physical = jones_transmission(train, physical_out * sample * physical_in);
       sum += std::fabs(cielab_lightness(ideal) - cielab_lightness(physical));

@@ -31,7 +31,7 @@ LensSpec physical_lens_spec(int side = +1);
 
 struct LensPolarizationTable {
   static constexpr int kSamples = 256;
-  double max_sin = 0.999;          // table spans sin θ_air in [0, max_sin]
+  double max_sin = 0.999;            // table spans sin θ_air in [0, max_sin]
   std::vector<double> tau_s, tau_p;  // relative amplitude transmissions at sin θ = max_sin·i/(kSamples−1)
   // Real 2×2 Jones matrix of one lens for a ray along k_air, in transverse_basis(k_air).
   glm::dmat2 jones(const glm::dvec3& k_air) const;

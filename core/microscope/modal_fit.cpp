@@ -92,9 +92,8 @@ namespace pmsim {
 
 namespace {
 // Coefficients of one anchor from the mode directions and transmissions.
-void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double t2,
-              const TrainState& t, const glm::dmat2* lens_in, const glm::dmat2* lens_out,
-              double out[5]) {
+void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double t2, const TrainState& t,
+              const glm::dmat2* lens_in, const glm::dmat2* lens_out, double out[5]) {
   glm::dvec2 e1 = e1in, e2 = e2in;
   double det = e1.x * e2.y - e1.y * e2.x;
   if (std::fabs(det) < 1e-9) {
@@ -129,21 +128,21 @@ void terms_at(const glm::dvec2& e1in, const glm::dvec2& e2in, double t1, double 
         const int dm = sm[i] - sm[j], dk = sk[i] - sk[j];
         const double v = 2.0 * amp[i] * amp[j];
         if (dk == 0)
-          out[1] += v;            // cos φ
+          out[1] += v;  // cos φ
         else if (dm == 0)
-          out[2] += v;            // cos χ
+          out[2] += v;  // cos χ
         else if (dm == dk)
-          out[3] += v;            // cos(φ + χ)
+          out[3] += v;  // cos(φ + χ)
         else
-          out[4] += v;            // cos(φ − χ)
+          out[4] += v;  // cos(φ − χ)
       }
     }
   }
 }
 }  // namespace
 
-ModalTerms make_modal_terms(const ModalFit& f, const TrainState& train, double s,
-                            const glm::dmat2* lens_in, const glm::dmat2* lens_out) {
+ModalTerms make_modal_terms(const ModalFit& f, const TrainState& train, double s, const glm::dmat2* lens_in,
+                            const glm::dmat2* lens_out) {
   ModalTerms m;
   for (int a = 0; a < 3; ++a) {
     m.gamma_nm[a] = s * f.gamma_[a];

@@ -26,8 +26,8 @@ class ModalFit {
   double retardation_nm(double wavelength_nm) const;
   // A fit known otherwise (e.g. interpolated from a table of fits): Γ, the mode directions in
   // transverse_basis(k_air) and the transmissions at the three anchors.
-  void assign(const double gamma_nm[3], const glm::dvec2 e1[3], const glm::dvec2 e2[3],
-              const double t1[3], const double t2[3]);
+  void assign(const double gamma_nm[3], const glm::dvec2 e1[3], const glm::dvec2 e2[3], const double t1[3],
+              const double t2[3]);
   // The raw anchor values (what assign takes).
   double gamma_at_anchor(int a) const { return gamma_[a]; }
   const glm::dvec2& e1_at_anchor(int a) const { return e1_[a]; }
@@ -56,14 +56,13 @@ namespace pmsim {
 // calculus with the modes as basis), given at the three anchors and interpolated like Γ.
 struct ModalTerms {
   double gamma_nm[3]{};
-  double c[5][3]{};   // [C0, Cφ, Cχ, C₊, C₋][anchor]
+  double c[5][3]{};  // [C0, Cφ, Cχ, C₊, C₋][anchor]
 };
 // thickness_scale: the plate is that many times the fitted thickness (Γ ∝ d, t → t^scale).
 // lens_in / lens_out: real Jones matrices of the condenser (before the sample) and the objective
 // (after it) for this direction, in the ray's transverse basis; null = ideal lenses.
-ModalTerms make_modal_terms(const ModalFit& fit, const TrainState& train,
-                            double thickness_scale = 1.0, const glm::dmat2* lens_in = nullptr,
-                            const glm::dmat2* lens_out = nullptr);
+ModalTerms make_modal_terms(const ModalFit& fit, const TrainState& train, double thickness_scale = 1.0,
+                            const glm::dmat2* lens_in = nullptr, const glm::dmat2* lens_out = nullptr);
 // The identity sample (empty stage, isotropic layer) in the same train.
 ModalTerms identity_modal_terms(const TrainState& train, const glm::dmat2* lens_in = nullptr,
                                 const glm::dmat2* lens_out = nullptr);

@@ -48,45 +48,44 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
   }
   const bool use_radial = out.radial_table;
   std::atomic<bool> stop{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      if (stop || (cancel && *cancel)) {
-                        stop = true;
-                        return;
-                      }
-                      for (std::size_t u = r.begin(); u != r.end(); ++u) {
-                        const EvalUnit& unit = units[u];
-                        const OpticalDomain& dom = domains[unit.domain];
-                        for (int d = 0; d < plan.dirs_of(unit); ++d) {
-                          glm::dmat2 jc, jo;
-                          plan.lens_jones(plan.dir(unit, d), jc, jo);
-                          const glm::dmat2* pc = &jc;
-                          const glm::dmat2* po = &jo;
-                          if (!dom.crystal || unit.thickness_um <= 0.0) {
-                            out.terms[u * dirs_per_unit + d] = identity_modal_terms(train, pc, po);
-                            continue;
-                          }
-                          ModalFit fit;
-                          if (use_radial)
-                            fit = radial.at(plan.dir(unit, d));
-                          else
-                            fit.fit(anchors[unit.domain].data(), plan.dir(unit, d));
-                          if (exact.absorbing_in_field && dom.crystal->absorbing()) out.unit_exact[u] = 1;
-                          if (exact.optically_active_near_axis && dom.crystal->optically_active()) {
-                            // Elliptical modes have ellipticity ≈ (rotation)/(linear phase);
-                            // the linear model's intensity error is its square: keep it below
-                            // ~1e-3 (rotation < linear phase / 30) or go exact.
-                            const double rot = std::fabs(dom.crystal->rotatory_power_rad_per_um(400.0)) *
-                                               unit.thickness_um;
-                            const double lin = 2.0 * kPi * fit.retardation_nm(400.0) *
-                                               unit.thickness_um / dom.thickness_um / 400.0;
-                            if (lin < 30.0 * rot) out.unit_exact[u] = 1;
-                          }
-                          out.terms[u * dirs_per_unit + d] = make_modal_terms(
-                              fit, train, unit.thickness_um / dom.thickness_um, pc, po);
-                        }
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, units.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        if (stop || (cancel && *cancel)) {
+          stop = true;
+          return;
+        }
+        for (std::size_t u = r.begin(); u != r.end(); ++u) {
+          const EvalUnit& unit = units[u];
+          const OpticalDomain& dom = domains[unit.domain];
+          for (int d = 0; d < plan.dirs_of(unit); ++d) {
+            glm::dmat2 jc, jo;
+            plan.lens_jones(plan.dir(unit, d), jc, jo);
+            const glm::dmat2* pc = &jc;
+            const glm::dmat2* po = &jo;
+            if (!dom.crystal || unit.thickness_um <= 0.0) {
+              out.terms[u * dirs_per_unit + d] = identity_modal_terms(train, pc, po);
+              continue;
+            }
+            ModalFit fit;
+            if (use_radial)
+              fit = radial.at(plan.dir(unit, d));
+            else
+              fit.fit(anchors[unit.domain].data(), plan.dir(unit, d));
+            if (exact.absorbing_in_field && dom.crystal->absorbing()) out.unit_exact[u] = 1;
+            if (exact.optically_active_near_axis && dom.crystal->optically_active()) {
+              // Elliptical modes have ellipticity ≈ (rotation)/(linear phase);
+              // the linear model's intensity error is its square: keep it below
+              // ~1e-3 (rotation < linear phase / 30) or go exact.
+              const double rot = std::fabs(dom.crystal->rotatory_power_rad_per_um(400.0)) * unit.thickness_um;
+              const double lin =
+                  2.0 * kPi * fit.retardation_nm(400.0) * unit.thickness_um / dom.thickness_um / 400.0;
+              if (lin < 30.0 * rot) out.unit_exact[u] = 1;
+            }
+            out.terms[u * dirs_per_unit + d] =
+                make_modal_terms(fit, train, unit.thickness_um / dom.thickness_um, pc, po);
+          }
+        }
+      });
   if (stop) return std::nullopt;
   return out;
 }

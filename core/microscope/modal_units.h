@@ -14,10 +14,10 @@ namespace pmsim {
 class EvaluationPlan;
 
 struct ModalUnits {
-  std::vector<ModalTerms> terms;   // unit u, direction d at u*dirs_per_unit+d
+  std::vector<ModalTerms> terms;  // unit u, direction d at u*dirs_per_unit+d
   int dirs_per_unit = 1;
-  std::vector<char> unit_exact;    // 1 = this unit needs the exact Jones matrix
-  bool radial_table = false;       // the fits came from a RadialModalTable
+  std::vector<char> unit_exact;  // 1 = this unit needs the exact Jones matrix
+  bool radial_table = false;     // the fits came from a RadialModalTable
 };
 
 // Fits every unit of `plan` (its domains, view and lenses set) in parallel (TBB); nullopt when

@@ -52,9 +52,9 @@ std::string view_report(const PixelView& view) {
       break;
     case ViewKind::Field:
       out << "view: "
-          << (!view.cone_dirs.empty()
-                  ? "image plane in the convergent cone (" + std::to_string(view.cone_dirs.size()) + " directions)"
-                  : std::string("orthoscopic, parallel light"))
+          << (!view.cone_dirs.empty() ? "image plane in the convergent cone (" +
+                                            std::to_string(view.cone_dirs.size()) + " directions)"
+                                      : std::string("orthoscopic, parallel light"))
           << ", " << view.units.size() << " spectral evaluation" << (view.units.size() == 1 ? "" : "s")
           << " for the field";
       break;
@@ -66,8 +66,9 @@ std::string lens_report(const ModelPolicy& policy) {
   char buf[160];
   if (policy.lens_difference_dL) {
     std::snprintf(buf, sizeof buf,
-                  policy.lenses ? "; condenser, objective: physical SML lenses (auto: ideal would differ by ΔL*≈%.2f)"
-                                : "; condenser, objective: ideal (auto: physical differs by ΔL*≈%.2f)",
+                  policy.lenses
+                      ? "; condenser, objective: physical SML lenses (auto: ideal would differ by ΔL*≈%.2f)"
+                      : "; condenser, objective: ideal (auto: physical differs by ΔL*≈%.2f)",
                   *policy.lens_difference_dL);
     return buf;
   }
@@ -85,19 +86,23 @@ std::string model_report(const ModelPolicy& policy, const PixelView& view) {
   report << view_report(view);
   report << "; plate: "
          << (policy.plate_model == PlateModel::Exact
-                 ? (policy.single_wavelength ? "exact Jones matrix (single wavelength)" : "exact Jones matrix per wavelength")
+                 ? (policy.single_wavelength ? "exact Jones matrix (single wavelength)"
+                                             : "exact Jones matrix per wavelength")
                  : "modal fit (3 mode solutions per direction, band-averaged interference)");
   report << lens_report(policy);
   report << "; Bertrand lens: ideal (images the back focal plane)";
   if (policy.radial_table)
-    report << "; optic axis ⟂ stage: modal fits from a radial table of " << RadialModalTable::kEntries << " directions";
+    report << "; optic axis ⟂ stage: modal fits from a radial table of " << RadialModalTable::kEntries
+           << " directions";
   if (policy.exact_units > 0)
     report << "; exact Jones matrix for " << policy.exact_units << " of " << view.units.size()
            << " evaluations (absorbing crystals in parallel light; optically active ones near the axis)";
   if (policy.ghosts_traced) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "; lens ghosts (dT = %d): %d paths, objective %.3f %% + condenser %.3f %% of a white field",
-                  policy.ghost_depth, policy.ghost_paths, policy.ghost_objective_percent, policy.ghost_condenser_percent);
+    std::snprintf(buf, sizeof buf,
+                  "; lens ghosts (dT = %d): %d paths, objective %.3f %% + condenser %.3f %% of a white field",
+                  policy.ghost_depth, policy.ghost_paths, policy.ghost_objective_percent,
+                  policy.ghost_condenser_percent);
     report << buf;
   } else if (policy.lenses && view.kind == ViewKind::ConoscopicFigure) {
     report << "; lens ghosts: none (optics.lens_depth < 2: no internal reflection reaches the image)";

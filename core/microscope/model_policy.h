@@ -36,21 +36,21 @@ struct ExactnessCriteria {
 
 struct ModelPolicy {
   PlateModel plate_model = PlateModel::Modal;
-  bool single_wavelength = false;      // render.single_wavelength_nm > 0 (one reason for Exact)
-  ExactnessCriteria exact;             // modal model only
+  bool single_wavelength = false;  // render.single_wavelength_nm > 0 (one reason for Exact)
+  ExactnessCriteria exact;         // modal model only
 
   // Lenses (condenser and objective; the Bertrand lens is always ideal).
-  LensModel lens_model_asked = LensModel::Auto;  // optics.lens_model
-  FresnelModel fresnel = FresnelModel::Exact;    // optics.schlick: the physical lenses' Fresnel
-  bool oblique_light = false;                    // convergent light: the only case where lenses differ
-  const LensPolarizationTable* lenses = nullptr; // the physical lens model; null = ideal
-  std::optional<double> lens_difference_dL;      // auto in oblique light: mean ΔL*, ideal vs physical
+  LensModel lens_model_asked = LensModel::Auto;   // optics.lens_model
+  FresnelModel fresnel = FresnelModel::Exact;     // optics.schlick: the physical lenses' Fresnel
+  bool oblique_light = false;                     // convergent light: the only case where lenses differ
+  const LensPolarizationTable* lenses = nullptr;  // the physical lens model; null = ideal
+  std::optional<double> lens_difference_dL;       // auto in oblique light: mean ΔL*, ideal vs physical
 
   // What the later stages found (fit_modal_units, the lens ghosts).
-  bool radial_table = false;           // modal fits interpolated from a RadialModalTable
-  std::size_t exact_units = 0;         // units of a modal plan evaluated exactly (ExactnessCriteria)
-  bool ghosts_traced = false;          // lens ghosts added (physical lenses, dT ≥ 2, conoscopic figure)
-  int ghost_depth = 0;                 // optics.lens_depth (dT) of the traced ghosts
+  bool radial_table = false;    // modal fits interpolated from a RadialModalTable
+  std::size_t exact_units = 0;  // units of a modal plan evaluated exactly (ExactnessCriteria)
+  bool ghosts_traced = false;   // lens ghosts added (physical lenses, dT ≥ 2, conoscopic figure)
+  int ghost_depth = 0;          // optics.lens_depth (dT) of the traced ghosts
   int ghost_paths = 0;
   double ghost_objective_percent = 0.0, ghost_condenser_percent = 0.0;  // of a white field
 };

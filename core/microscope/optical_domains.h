@@ -17,8 +17,8 @@
 namespace pmsim {
 
 struct OpticalDomain {
-  const Crystal* crystal = nullptr;    // nullptr: nothing on the stage (or an isotropic layer)
-  glm::dmat3 crystal_to_lab{1.0};      // stage rotation applied
+  const Crystal* crystal = nullptr;  // nullptr: nothing on the stage (or an isotropic layer)
+  glm::dmat3 crystal_to_lab{1.0};    // stage rotation applied
   double thickness_um = 0.0;
   std::string mineral;
 };

@@ -98,8 +98,7 @@ double modal_transmission(const TrainState& t, const ModalPoint& m, double band_
       total += amp[i] * amp[i];
       for (int j = i + 1; j < n; ++j) {
         if (amp[i] == 0.0 || amp[j] == 0.0) continue;
-        total += 2.0 * amp[i] * amp[j] * std::cos(ph[i] - ph[j]) *
-                 sinc(0.5 * (dph[i] - dph[j]) * band_nm);
+        total += 2.0 * amp[i] * amp[j] * std::cos(ph[i] - ph[j]) * sinc(0.5 * (dph[i] - dph[j]) * band_nm);
       }
     }
   }

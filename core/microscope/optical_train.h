@@ -18,18 +18,18 @@ namespace pmsim {
 struct ModalPoint {
   glm::dvec2 e1{1.0, 0.0}, e2{0.0, 1.0};
   double t1 = 1.0, t2 = 1.0;
-  double gamma_nm = 0.0;         // Γ = optical path difference slow − fast
-  double dgamma_dnm = 0.0;       // dΓ/dλ
+  double gamma_nm = 0.0;    // Γ = optical path difference slow − fast
+  double dgamma_dnm = 0.0;  // dΓ/dλ
 };
 
 struct TrainState {
   double wavelength_nm = 550.0;
   glm::dvec2 polarizer{1.0, 0.0};
-  int outputs = 1;                              // 1: analyzer in; 2: analyzer out (x and y)
+  int outputs = 1;  // 1: analyzer in; 2: analyzer out (x and y)
   glm::dvec2 output[2]{{0.0, 1.0}, {1.0, 0.0}};
-  int comp_modes = 1;                           // 1: no compensator (identity); 2: fast, slow
+  int comp_modes = 1;  // 1: no compensator (identity); 2: fast, slow
   glm::dvec2 comp_dir[2]{{1.0, 0.0}, {0.0, 1.0}};
-  double chi_rad = 0.0, dchi_dnm = 0.0;         // compensator phase 2πΓc/λ and its slope
+  double chi_rad = 0.0, dchi_dnm = 0.0;  // compensator phase 2πΓc/λ and its slope
   JonesMatrix comp_jones = JonesMatrix::identity();
 };
 

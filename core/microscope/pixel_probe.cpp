@@ -34,7 +34,8 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
     if (std::hypot(f.x, f.y) > kParallelBeamSinTheta / scene.objective.na) return p;
   }
   p.lit = true;
-  const int dom = cono_bfp ? domain_at_image_point(*plan, 0.5, 0.5) : domain_at_image_point(*plan, x_frac, y_frac);
+  const int dom =
+      cono_bfp ? domain_at_image_point(*plan, 0.5, 0.5) : domain_at_image_point(*plan, x_frac, y_frac);
   const OpticalDomain& D = plan->domains()[std::max(0, dom)];
   p.mineral = D.mineral;
   p.thickness_um = D.thickness_um;

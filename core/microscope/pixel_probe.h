@@ -9,13 +9,13 @@
 namespace pmsim {
 
 struct PixelProbe {
-  bool lit = false;                      // false outside the conoscopic disk / the BFP spot
-  std::vector<double> wavelength_nm;     // 380, 385, …, 780
-  std::vector<double> transmission;      // T(λ) through the whole train (Y = 1 reference)
-  double retardation_nm = 0.0;           // Γ at 550 nm (slow − fast), 0 for an empty stage
-  double order = 0.0;                    // Γ / 550 nm
+  bool lit = false;                   // false outside the conoscopic disk / the BFP spot
+  std::vector<double> wavelength_nm;  // 380, 385, …, 780
+  std::vector<double> transmission;   // T(λ) through the whole train (Y = 1 reference)
+  double retardation_nm = 0.0;        // Γ at 550 nm (slow − fast), 0 for an empty stage
+  double order = 0.0;                 // Γ / 550 nm
   double thickness_um = 0.0;
-  std::string mineral;                   // "quartz", "empty stage", …
+  std::string mineral;  // "quartz", "empty stage", …
 };
 
 // (x_frac, y_frac): 0…1 from the left and from the TOP of the image (texture coordinates).

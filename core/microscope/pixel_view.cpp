@@ -39,7 +39,8 @@ class FieldUnits {
       : scene_(scene),
         domains_(domains),
         is_wedge_(scene.sample_in && scene.sample.type == SampleType::Wedge),
-        wedge_steps_(scene.mode == ViewMode::Cono ? 256 : 2 * std::max(scene.render.width, scene.render.height)),
+        wedge_steps_(scene.mode == ViewMode::Cono ? 256
+                                                  : 2 * std::max(scene.render.width, scene.render.height)),
         to_sample_(scene.stage_deg) {}
 
   std::vector<EvalUnit> units() const {
@@ -149,7 +150,8 @@ PixelView parallel_light_spot_view(const Scene& scene, const OpticalDomains& dom
       const std::size_t i = static_cast<std::size_t>(y) * W + x;
       view.pixel_offset[i] = static_cast<int>(view.refs.size());
       const glm::dvec2 f = field_from_pixel(W, H, x + 0.5, y + 0.5);
-      if (std::hypot(f.x, f.y) <= rho_spot) view.refs.insert(view.refs.end(), field.tmp.begin(), field.tmp.end());
+      if (std::hypot(f.x, f.y) <= rho_spot)
+        view.refs.insert(view.refs.end(), field.tmp.begin(), field.tmp.end());
     }
   view.pixel_offset[static_cast<std::size_t>(W) * H] = static_cast<int>(view.refs.size());
   return view;
@@ -158,7 +160,8 @@ PixelView parallel_light_spot_view(const Scene& scene, const OpticalDomains& dom
 std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& domains,
                                     const std::atomic<bool>* cancel) {
   const int W = scene.render.width, H = scene.render.height;
-  const bool cone = scene.mode == ViewMode::Cono;  // without the Bertrand lens: the image plane lit by the whole cone
+  const bool cone =
+      scene.mode == ViewMode::Cono;  // without the Bertrand lens: the image plane lit by the whole cone
   const bool on_stage = scene.sample_in;
   const SampleType type = scene.sample.type;
   const FieldUnits field_units(scene, domains);
@@ -170,7 +173,8 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
     const double s_max = std::min(scene.condenser.na, scene.objective.na);
     view.cone_dirs = cone_directions(scene.render.spp > 0 ? std::max(1, scene.render.spp) : 64, s_max);
   }
-  const int n = samples_per_side(scene.render.spp > 0 ? scene.render.spp : (on_stage && type != SampleType::Plate ? 4 : 1));
+  const int n = samples_per_side(scene.render.spp > 0 ? scene.render.spp
+                                                      : (on_stage && type != SampleType::Plate ? 4 : 1));
   view.spatial_samples = n * n;
   // Sections: the domain at every pixel centre first; only pixels on a grain or lamella boundary
   // (a 4-neighbour differs) need the sub-pixel samples.
@@ -191,7 +195,8 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
   auto interior = [&](int x, int y) {
     const int d = centre_domain[static_cast<std::size_t>(y) * W + x];
     auto same = [&](int xx, int yy) {
-      return xx < 0 || yy < 0 || xx >= W || yy >= H || centre_domain[static_cast<std::size_t>(yy) * W + xx] == d;
+      return xx < 0 || yy < 0 || xx >= W || yy >= H ||
+             centre_domain[static_cast<std::size_t>(yy) * W + xx] == d;
     };
     return same(x - 1, y) && same(x + 1, y) && same(x, y - 1) && same(x, y + 1);
   };

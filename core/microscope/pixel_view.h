@@ -26,7 +26,7 @@ struct EvalUnit {
   int domain = 0;
   double thickness_um = 0.0;
   glm::dvec3 k_air{0.0, 0.0, 1.0};
-  bool cone = false;                   // integrate over the illuminating cone instead of k_air
+  bool cone = false;  // integrate over the illuminating cone instead of k_air
 };
 
 struct PixelRef {
@@ -39,10 +39,10 @@ enum class ViewKind { ConoscopicFigure, ParallelLightSpot, Field };
 struct PixelView {
   ViewKind kind = ViewKind::Field;
   std::vector<EvalUnit> units;
-  std::vector<int> pixel_offset;       // refs of pixel i: [pixel_offset[i], pixel_offset[i+1])
+  std::vector<int> pixel_offset;  // refs of pixel i: [pixel_offset[i], pixel_offset[i+1])
   std::vector<PixelRef> refs;
-  std::vector<glm::dvec3> cone_dirs;   // directions (air) of the illuminating cone; empty: none
-  int spatial_samples = 1;             // sub-pixel positions per pixel
+  std::vector<glm::dvec3> cone_dirs;  // directions (air) of the illuminating cone; empty: none
+  int spatial_samples = 1;            // sub-pixel positions per pixel
 };
 
 // Each returns nullopt when `cancel` (may be null) is raised while it runs; the per-pixel passes run

@@ -20,21 +20,21 @@ namespace pmsim {
 // then be flipped on its own (cono + bertrand out: the image plane lit by the convergent cone;
 // ortho + bertrand in: the back focal plane in parallel light, a small bright spot).
 enum class ViewMode { Ortho, Cono };
-enum class SampleType { Plate, Wedge, Section };           // sample.type: plate|wedge|section
+enum class SampleType { Plate, Wedge, Section };             // sample.type: plate|wedge|section
 enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
 // illuminant: D65|A is pmsim::Illuminant (core/spectrum/illuminant.h)
-enum class LensModel { Auto, Ideal, Physical };            // optics.lens_model: auto|ideal|physical
-enum class RenderStrategy { Auto, Modal, Exact };          // render.strategy: auto|modal|exact
+enum class LensModel { Auto, Ideal, Physical };    // optics.lens_model: auto|ideal|physical
+enum class RenderStrategy { Auto, Modal, Exact };  // render.strategy: auto|modal|exact
 
 // sample.crystal is CrystalIndices (core/crystal/crystal_indices.h)
 
 struct ObjectiveSettings {
-  double magnification = 10.0;   // objective.magnification
-  double na = 0.25;              // objective.na
+  double magnification = 10.0;  // objective.magnification
+  double na = 0.25;             // objective.na
 };
 
 struct CondenserSettings {
-  double na = 0.9;               // condenser.na (the cone that lights the conoscopic figure)
+  double na = 0.9;  // condenser.na (the cone that lights the conoscopic figure)
 };
 
 // sample.cut: a plate cut along a crystal plane of a library mineral with unit-cell and optical-
@@ -47,26 +47,26 @@ struct SampleCut {
 };
 
 struct SampleSettings {
-  SampleType type = SampleType::Plate;         // sample.type
-  std::string mineral = "quartz";              // sample.mineral (a name in assets/minerals)
-  std::optional<CrystalIndices> crystal;       // sample.crystal (replaces mineral when set)
-  double thickness_um = 30.0;                  // sample.thickness_um (wedge: at the right edge)
-  std::array<double, 3> optic_axis{1, 0, 0};   // sample.optic_axis (uniaxial), lab frame at stage 0°
-  std::array<double, 3> x_axis{1, 0, 0};       // sample.x_axis (biaxial nα direction)
-  std::array<double, 3> z_axis{0, 0, 1};       // sample.z_axis (biaxial nγ direction)
-  std::optional<SampleCut> cut;                // sample.cut (replaces the three axes when set)
-  std::string section;                         // sample.section (thin-section file in assets/sections)
-  std::string medium = "mounting";             // sample.medium (mounting medium name)
+  SampleType type = SampleType::Plate;        // sample.type
+  std::string mineral = "quartz";             // sample.mineral (a name in assets/minerals)
+  std::optional<CrystalIndices> crystal;      // sample.crystal (replaces mineral when set)
+  double thickness_um = 30.0;                 // sample.thickness_um (wedge: at the right edge)
+  std::array<double, 3> optic_axis{1, 0, 0};  // sample.optic_axis (uniaxial), lab frame at stage 0°
+  std::array<double, 3> x_axis{1, 0, 0};      // sample.x_axis (biaxial nα direction)
+  std::array<double, 3> z_axis{0, 0, 1};      // sample.z_axis (biaxial nγ direction)
+  std::optional<SampleCut> cut;               // sample.cut (replaces the three axes when set)
+  std::string section;                        // sample.section (thin-section file in assets/sections)
+  std::string medium = "mounting";            // sample.medium (mounting medium name)
 };
 
 struct RenderSettings {
-  int width = 512;                             // render.width
-  int height = 512;                            // render.height
-  int spp = 0;                                 // render.spp (0: until converged)
-  int wavelengths = 0;                         // render.wavelengths (0: until converged)
-  double single_wavelength_nm = 0.0;           // render.single_wavelength_nm (0: white light)
-  double tolerance_de2000 = 0.5;               // render.tolerance (stop when the estimate is below)
-  RenderStrategy strategy = RenderStrategy::Auto;        // render.strategy: auto|modal|exact
+  int width = 512;                                 // render.width
+  int height = 512;                                // render.height
+  int spp = 0;                                     // render.spp (0: until converged)
+  int wavelengths = 0;                             // render.wavelengths (0: until converged)
+  double single_wavelength_nm = 0.0;               // render.single_wavelength_nm (0: white light)
+  double tolerance_de2000 = 0.5;                   // render.tolerance (stop when the estimate is below)
+  RenderStrategy strategy = RenderStrategy::Auto;  // render.strategy: auto|modal|exact
 };
 
 struct OpticsSettings {
@@ -76,19 +76,19 @@ struct OpticsSettings {
 };
 
 struct Scene {
-  ViewMode mode = ViewMode::Ortho;             // mode
-  double polarizer_deg = 0.0;                  // polarizer_deg (0 = E–W)
-  double analyzer_deg = 90.0;                  // analyzer_deg (90 = N–S)
-  bool analyzer_in = true;                     // analyzer: in|out
-  double stage_deg = 0.0;                      // stage_deg
-  bool bertrand_in = false;                    // bertrand: in|out
-  Illuminant illuminant = Illuminant::D65;       // illuminant
+  ViewMode mode = ViewMode::Ortho;          // mode
+  double polarizer_deg = 0.0;               // polarizer_deg (0 = E–W)
+  double analyzer_deg = 90.0;               // analyzer_deg (90 = N–S)
+  bool analyzer_in = true;                  // analyzer: in|out
+  double stage_deg = 0.0;                   // stage_deg
+  bool bertrand_in = false;                 // bertrand: in|out
+  Illuminant illuminant = Illuminant::D65;  // illuminant
   ObjectiveSettings objective;
   CondenserSettings condenser;
   SampleSettings sample;
-  bool sample_in = true;                       // sample.present: false = empty stage
-  Compensator compensator = Compensator::None; // compensator
-  double compensator_position = 0.0;           // compensator_position 0…1 (quartz wedge)
+  bool sample_in = true;                        // sample.present: false = empty stage
+  Compensator compensator = Compensator::None;  // compensator
+  double compensator_position = 0.0;            // compensator_position 0…1 (quartz wedge)
   RenderSettings render;
   OpticsSettings optics;
 };

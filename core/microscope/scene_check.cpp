@@ -53,8 +53,8 @@ void check_cut(const Scene& s, const std::string& file) {
     crystal_to_lab_of_cut(m->cell, plane, north);
   } catch (const BadValue&) {
     throw InputError(file, "sample.cut.north", cut.north,
-                     "makes " + num(off_deg) + "° with the plane " + cut.plane + " of " +
-                         s.sample.mineral + "; north must lie in the section plane (to 1e-6)");
+                     "makes " + num(off_deg) + "° with the plane " + cut.plane + " of " + s.sample.mineral +
+                         "; north must lie in the section plane (to 1e-6)");
   }
 }
 
@@ -64,9 +64,9 @@ void check_pixel_count(const Scene& s, const std::string& file, const char* key)
   const long long n = static_cast<long long>(s.render.width) * s.render.height;
   const bool w = std::string(key) == "render.width";
   require(n <= kMaxRenderPixels, file, key, num(w ? s.render.width : s.render.height),
-          "render.width × render.height = " + num(s.render.width) + " × " + num(s.render.height) +
-              " = " + std::to_string(n) + " pixels, more than the limit of " +
-              std::to_string(kMaxRenderPixels) + " (8192²)");
+          "render.width × render.height = " + num(s.render.width) + " × " + num(s.render.height) + " = " +
+              std::to_string(n) + " pixels, more than the limit of " + std::to_string(kMaxRenderPixels) +
+              " (8192²)");
 }
 
 void check_scene(const Scene& s, const std::string& file) {
@@ -77,23 +77,21 @@ void check_scene(const Scene& s, const std::string& file) {
   finite(s.analyzer_deg, "analyzer_deg");
   finite(s.stage_deg, "stage_deg");
   finite(s.objective.magnification, "objective.magnification");
-  require(s.objective.magnification > 0 && s.objective.magnification <= 1000, file,
-          "objective.magnification", num(s.objective.magnification), "must be in (0, 1000]");
+  require(s.objective.magnification > 0 && s.objective.magnification <= 1000, file, "objective.magnification",
+          num(s.objective.magnification), "must be in (0, 1000]");
   // A dry objective and condenser collect at most sin θ < 1 in air.
   require(s.objective.na > 0 && s.objective.na < 1, file, "objective.na", num(s.objective.na),
           "numerical aperture in air must be in (0, 1)");
   require(s.condenser.na > 0 && s.condenser.na < 1, file, "condenser.na", num(s.condenser.na),
           "numerical aperture in air must be in (0, 1)");
-  require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 &&
-              s.sample.thickness_um <= 1e5,
+  require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 && s.sample.thickness_um <= 1e5,
           file, "sample.thickness_um", num(s.sample.thickness_um), "must be in (0, 100000] µm");
-  for (auto [v, key] : {std::pair{&s.sample.optic_axis, "sample.optic_axis"},
-                        std::pair{&s.sample.x_axis, "sample.x_axis"},
-                        std::pair{&s.sample.z_axis, "sample.z_axis"}}) {
+  for (auto [v, key] :
+       {std::pair{&s.sample.optic_axis, "sample.optic_axis"}, std::pair{&s.sample.x_axis, "sample.x_axis"},
+        std::pair{&s.sample.z_axis, "sample.z_axis"}}) {
     const auto& a = *v;
     const double len2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    require(std::isfinite(len2) && len2 > 1e-24, file, key,
-            vec_text(a),
+    require(std::isfinite(len2) && len2 > 1e-24, file, key, vec_text(a),
             "a direction cannot be the zero vector");
   }
   {
@@ -102,11 +100,11 @@ void check_scene(const Scene& s, const std::string& file) {
     // tolerance, |x̂·ẑ| ≤ 1e-6, accepts axes written to six or more significant digits.
     const auto& x = s.sample.x_axis;
     const auto& z = s.sample.z_axis;
-    const double cx = x[1] * z[2] - x[2] * z[1], cy = x[2] * z[0] - x[0] * z[2], cz = x[0] * z[1] - x[1] * z[0];
+    const double cx = x[1] * z[2] - x[2] * z[1], cy = x[2] * z[0] - x[0] * z[2],
+                 cz = x[0] * z[1] - x[1] * z[0];
     const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
     const double lz = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
-    require(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-9 * lx * lz, file, "sample.x_axis",
-            vec_text(x),
+    require(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-9 * lx * lz, file, "sample.x_axis", vec_text(x),
             "must not be parallel to sample.z_axis");
     const double cos_xz = (x[0] * z[0] + x[1] * z[1] + x[2] * z[2]) / (lx * lz);
     require(std::abs(cos_xz) <= 1e-6, file, "sample.x_axis", vec_text(x),
@@ -132,15 +130,13 @@ void check_scene(const Scene& s, const std::string& file) {
   if (s.sample_in && s.sample.type == SampleType::Section)
     require(section_known(s.sample.section), file, "sample.section", s.sample.section,
             "no such thin-section file in assets/sections");
-  require(medium_known(s.sample.medium), file, "sample.medium", s.sample.medium,
-          "unknown mounting medium");
-  require(std::isfinite(s.compensator_position) && s.compensator_position >= 0 &&
-              s.compensator_position <= 1,
+  require(medium_known(s.sample.medium), file, "sample.medium", s.sample.medium, "unknown mounting medium");
+  require(std::isfinite(s.compensator_position) && s.compensator_position >= 0 && s.compensator_position <= 1,
           file, "compensator_position", num(s.compensator_position), "must be in [0, 1]");
-  require(s.render.width > 0 && s.render.width <= 16384, file, "render.width",
-          num(s.render.width), "must be in 1…16384");
-  require(s.render.height > 0 && s.render.height <= 16384, file, "render.height",
-          num(s.render.height), "must be in 1…16384");
+  require(s.render.width > 0 && s.render.width <= 16384, file, "render.width", num(s.render.width),
+          "must be in 1…16384");
+  require(s.render.height > 0 && s.render.height <= 16384, file, "render.height", num(s.render.height),
+          "must be in 1…16384");
   check_pixel_count(s, file, "render.height");
   require(s.render.spp >= 0 && s.render.spp <= 1000000, file, "render.spp", num(s.render.spp),
           "must be ≥ 0 (0: until converged)");
@@ -150,8 +146,8 @@ void check_scene(const Scene& s, const std::string& file) {
               (s.render.single_wavelength_nm >= 380 && s.render.single_wavelength_nm <= 780),
           file, "render.single_wavelength_nm", num(s.render.single_wavelength_nm),
           "must be 0 (white light) or within 380–780 nm");
-  require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file,
-          "render.tolerance", num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
+  require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file, "render.tolerance",
+          num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
   require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= 10, file, "optics.lens_depth",
           num(s.optics.lens_depth), "must be in 0…10");
 }

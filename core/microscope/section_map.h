@@ -19,15 +19,15 @@ namespace pmsim {
 struct SectionGrain {
   std::string mineral;
   const Crystal* crystal = nullptr;
-  glm::dmat3 orientation{1.0};        // columns: crystal X, Y, Z in the sample frame
+  glm::dmat3 orientation{1.0};  // columns: crystal X, Y, Z in the sample frame
   glm::dvec2 seed{0.0};
-  double elongation = 1.0;            // cell length / width
-  double elongation_rad = 0.0;        // direction of the long side
-  double weight = 1.0;                // larger: bigger cell
+  double elongation = 1.0;      // cell length / width
+  double elongation_rad = 0.0;  // direction of the long side
+  double weight = 1.0;          // larger: bigger cell
   bool twinned = false;
-  double twin_trace_rad = 0.0;        // direction of the lamella traces
-  double twin_width = 0.05;           // lamella width (field units)
-  glm::dmat3 twin_orientation{1.0};   // orientation of the odd lamellae
+  double twin_trace_rad = 0.0;       // direction of the lamella traces
+  double twin_width = 0.05;          // lamella width (field units)
+  glm::dmat3 twin_orientation{1.0};  // orientation of the odd lamellae
   // Derived once at load (the map lookup runs per sub-pixel).
   double cos_elong = 1.0, sin_elong = 0.0;
   glm::dvec2 twin_normal{0.0, 1.0};

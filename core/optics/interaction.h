@@ -37,16 +37,16 @@ inline glm::dvec3 reflect_dir(const glm::dvec3& d, const glm::dvec3& N) {
 
 // Refracted direction, vector Snell law t = d/η + (cosθi/η − cosθt)·N_f with N_f facing the
 // incident ray (cosθi = −d·N_f > 0); η = n_t/n_i.
-inline glm::dvec3 refract_dir(const glm::dvec3& d, const glm::dvec3& N_facing, double cos_i,
-                              double cos_t, double eta) {
+inline glm::dvec3 refract_dir(const glm::dvec3& d, const glm::dvec3& N_facing, double cos_i, double cos_t,
+                              double eta) {
   return glm::normalize(d / eta + (cos_i / eta - cos_t) * N_facing);
 }
 
 // G at `point` with unit normal `normal` (either orientation); n_i on the side the ray comes from,
 // n_t on the other. Outgoing rays start at `point` and inherit λ, δ, O_p, ch and depth from `in`
 // (the caller adds the path it owns and sets depth). Field of a ray: √I·v_p·e^(−iδ).
-inline void interact(const PolarizedRay& in, const glm::dvec3& point, const glm::dvec3& normal,
-                     double n_i, double n_t, FresnelModel model, InteractionResult& out) {
+inline void interact(const PolarizedRay& in, const glm::dvec3& point, const glm::dvec3& normal, double n_i,
+                     double n_t, FresnelModel model, InteractionResult& out) {
   const glm::dvec3& d = in.dir;
   double dn = glm::dot(d, normal);
   const glm::dvec3 N_f = dn > 0.0 ? -normal : normal;  // faces the incident ray
@@ -79,10 +79,8 @@ inline void interact(const PolarizedRay& in, const glm::dvec3& point, const glm:
 
   if (f.tir) {
     // Paper §6: E_r⊥ = E⊥, E_r∥ = E∥ in modulus; phases δ⊥, δ∥. Two linear rays.
-    emit_reflected(in.intensity * a_s * a_s, (a_s < 0.0 ? -1.0 : 1.0) * fr.s,
-                   in.delta_rad - std::arg(f.r_s));
-    emit_reflected(in.intensity * a_p * a_p, (a_p < 0.0 ? -1.0 : 1.0) * p_r,
-                   in.delta_rad - std::arg(f.r_p));
+    emit_reflected(in.intensity * a_s * a_s, (a_s < 0.0 ? -1.0 : 1.0) * fr.s, in.delta_rad - std::arg(f.r_s));
+    emit_reflected(in.intensity * a_p * a_p, (a_p < 0.0 ? -1.0 : 1.0) * p_r, in.delta_rad - std::arg(f.r_p));
     return;
   }
 

@@ -23,18 +23,13 @@ struct JonesMatrix {
   complexd xx{1.0}, xy{0.0}, yx{0.0}, yy{1.0};
   static JonesMatrix identity() { return {}; }
   static JonesMatrix zero() { return {0.0, 0.0, 0.0, 0.0}; }
-  JonesVector operator*(const JonesVector& v) const {
-    return {xx * v.x + xy * v.y, yx * v.x + yy * v.y};
-  }
+  JonesVector operator*(const JonesVector& v) const { return {xx * v.x + xy * v.y, yx * v.x + yy * v.y}; }
   // this * o : apply o first, then this.
   JonesMatrix operator*(const JonesMatrix& o) const {
-    return {xx * o.xx + xy * o.yx, xx * o.xy + xy * o.yy,
-            yx * o.xx + yy * o.yx, yx * o.xy + yy * o.yy};
+    return {xx * o.xx + xy * o.yx, xx * o.xy + xy * o.yy, yx * o.xx + yy * o.yx, yx * o.xy + yy * o.yy};
   }
   JonesMatrix operator*(complexd s) const { return {xx * s, xy * s, yx * s, yy * s}; }
-  JonesMatrix operator+(const JonesMatrix& o) const {
-    return {xx + o.xx, xy + o.xy, yx + o.yx, yy + o.yy};
-  }
+  JonesMatrix operator+(const JonesMatrix& o) const { return {xx + o.xx, xy + o.xy, yx + o.yx, yy + o.yy}; }
 };
 
 // A real 2×2 matrix (a lens' frame change or diattenuation) as a Jones matrix. glm is

@@ -12,8 +12,8 @@
 
 namespace pmsim {
 
-inline glm::dvec3 oscillating_band(const glm::dvec3& W, const glm::dvec3& M6h, double phi0,
-                                   double phi1, double h) {
+inline glm::dvec3 oscillating_band(const glm::dvec3& W, const glm::dvec3& M6h, double phi0, double phi1,
+                                   double h) {
   const double x = 0.5 * phi1 * h;
   double s0, c0;
   fast_sincos(phi0, s0, c0);

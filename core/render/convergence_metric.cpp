@@ -9,8 +9,8 @@
 namespace pmsim {
 
 double unit_error(const EvaluationPlan& plan, const std::vector<double>& area,
-                  const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b,
-                  std::size_t stride, const std::atomic<bool>& cancel) {
+                  const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b, std::size_t stride,
+                  const std::atomic<bool>& cancel) {
   const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
   const bool mono = plan.scene().render.single_wavelength_nm > 0;
   struct Acc {

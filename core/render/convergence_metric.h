@@ -16,7 +16,7 @@ namespace pmsim {
 // u % stride == 0; 0 when none is visible. Parallel (TBB); a raised `cancel` makes it return early
 // with a partial value the caller discards.
 double unit_error(const EvaluationPlan& plan, const std::vector<double>& area,
-                  const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b,
-                  std::size_t stride, const std::atomic<bool>& cancel);
+                  const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b, std::size_t stride,
+                  const std::atomic<bool>& cancel);
 
 }  // namespace pmsim

@@ -11,18 +11,23 @@ namespace pmsim {
 // The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the two-lane
 // version in spectral_level.cpp.
 constexpr double kTwoOverPi = 0.63661977236758134308;
-constexpr double kPio2Hi = 1.5707963267341256;      // first 33 bits of π/2
-constexpr double kPio2Lo = 6.077100506506192e-11;   // π/2 − kPio2Hi
+constexpr double kPio2Hi = 1.5707963267341256;     // first 33 bits of π/2
+constexpr double kPio2Lo = 6.077100506506192e-11;  // π/2 − kPio2Hi
 
 // Taylor polynomials of sin and cos on the reduced argument |r| ≤ π/4 (truncation < 4e-13), for a
 // double or a vector of doubles (GCC/Clang vector extensions).
 template <class T>
 inline void sincos_taylor(T r, T& sr, T& cr) {
   const T r2 = r * r;
-  sr = r * (1.0 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
-           r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0)))))));
-  cr = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
-           r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0)))))));
+  sr = r * (1.0 + r2 * (-1.0 / 6 +
+                        r2 * (1.0 / 120 +
+                              r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-1.0 / 39916800 +
+                                                                             r2 * (1.0 / 6227020800.0)))))));
+  cr = 1.0 +
+       r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 +
+                                           r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
+                                                                     r2 * (1.0 / 479001600.0 +
+                                                                           r2 * (-1.0 / 87178291200.0)))))));
 }
 
 inline void fast_sincos(double x, double& s, double& c) {
@@ -32,10 +37,22 @@ inline void fast_sincos(double x, double& s, double& c) {
   sincos_taylor(r, sr, cr);
   const std::int64_t q = static_cast<std::int64_t>(k) & 3;
   switch (q) {
-    case 0: s = sr; c = cr; break;
-    case 1: s = cr; c = -sr; break;
-    case 2: s = -sr; c = -cr; break;
-    default: s = -cr; c = sr; break;
+    case 0:
+      s = sr;
+      c = cr;
+      break;
+    case 1:
+      s = cr;
+      c = -sr;
+      break;
+    case 2:
+      s = -sr;
+      c = -cr;
+      break;
+    default:
+      s = -cr;
+      c = sr;
+      break;
   }
 }
 

@@ -46,8 +46,7 @@ void develop_image(const EvaluationPlan& plan, const std::vector<glm::dvec3>& un
   });
 }
 
-double mean_ciede2000(const EvaluationPlan& plan, const std::vector<float>& a,
-                      const std::vector<float>& b) {
+double mean_ciede2000(const EvaluationPlan& plan, const std::vector<float>& a, const std::vector<float>& b) {
   const std::size_t n = static_cast<std::size_t>(plan.width()) * plan.height();
   const std::size_t stride = std::max<std::size_t>(1, n / 65536);
   const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);

@@ -14,8 +14,8 @@ namespace pmsim {
 // monochromatic: unit values are relative intensities T; the image then holds R = G = B = T and
 // XYZ = T × the illuminant white. A set `cancel` stops it between rows (the image is then
 // incomplete: discard it); a progressive renderer restarting on every slider step needs that.
-void develop_image(const EvaluationPlan& plan, const std::vector<glm::dvec3>& units,
-                   bool monochromatic, RenderImage& out, const std::atomic<bool>* cancel = nullptr);
+void develop_image(const EvaluationPlan& plan, const std::vector<glm::dvec3>& units, bool monochromatic,
+                   RenderImage& out, const std::atomic<bool>* cancel = nullptr);
 
 // Mean CIEDE2000 between two XYZ images of the plan's size over its lit pixels (a regular subset
 // of at most ~65k of them), white = the scene illuminant with Y = 1.

@@ -27,7 +27,7 @@ struct MichelLevyLine {
   // End points in chart units: x = Γ in nm, y = thickness in µm. `from` is the origin; `to` is
   // where the line leaves the chart (top edge, or right edge for large Δn).
   glm::dvec2 from{0.0}, to{0.0};
-  bool ends_on_top = true;     // label goes above the top edge (else beyond the right edge)
+  bool ends_on_top = true;  // label goes above the top edge (else beyond the right edge)
   // The same end points as fractions of the chart image: x 0…1 from the left, y 0…1 from the top.
   glm::dvec2 from_frac{0.0}, to_frac{0.0};
 };
@@ -37,15 +37,14 @@ struct MichelLevyLine {
 const std::vector<double>& michel_levy_standard_birefringences();
 // Lines for the given birefringences (Δn ≤ 0 skipped) over a chart spanning 0…max_retardation_nm
 // and 0…max_thickness_um.
-std::vector<MichelLevyLine> michel_levy_lines(double max_retardation_nm, double max_thickness_um = 50.0,
-                                              const std::vector<double>& birefringences =
-                                                  michel_levy_standard_birefringences());
+std::vector<MichelLevyLine> michel_levy_lines(
+    double max_retardation_nm, double max_thickness_um = 50.0,
+    const std::vector<double>& birefringences = michel_levy_standard_birefringences());
 // The chart with its birefringence lines drawn (dark, 1 px, antialiased) over the colours; rows
 // now differ (thickness runs from 0 at the bottom row to max_thickness_um at the top).
-std::vector<float> michel_levy_chart_with_lines(int width, int height, double max_retardation_nm,
-                                                double max_thickness_um = 50.0,
-                                                Illuminant illuminant = Illuminant::D65,
-                                                const std::vector<double>& birefringences =
-                                                    michel_levy_standard_birefringences());
+std::vector<float> michel_levy_chart_with_lines(
+    int width, int height, double max_retardation_nm, double max_thickness_um = 50.0,
+    Illuminant illuminant = Illuminant::D65,
+    const std::vector<double>& birefringences = michel_levy_standard_birefringences());
 
 }  // namespace pmsim

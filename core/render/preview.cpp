@@ -45,7 +45,8 @@ bool run_preview(const Scene& scene, int factor, int pass, const std::atomic<boo
   if (!compiled || cancel) return false;
   const EvaluationPlan& plan = *compiled;
   const int fixed = scene.render.wavelengths;
-  const SpectralLevel level = make_spectral_level(plan, fixed > 0 ? std::min(fixed, kPreviewBands) : kPreviewBands);
+  const SpectralLevel level =
+      make_spectral_level(plan, fixed > 0 ? std::min(fixed, kPreviewBands) : kPreviewBands);
   std::vector<glm::dvec3> units(plan.units().size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, units.size(), 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {

@@ -19,10 +19,10 @@ void upsample_preview(const Scene& scene, const EvaluationPlan& coarse_plan, con
   // row; the per-pixel work is the lit test and four weighted reads (the upsampling was over half
   // of the preview when every pixel recomputed its field point and direction).
   struct Axis {
-    double f2 = 0.0;           // square of the field coordinate of the pixel centre
-    int c0 = 0, c1 = 0;        // the two coarse cells around it (clamped into the grid)
+    double f2 = 0.0;             // square of the field coordinate of the pixel centre
+    int c0 = 0, c1 = 0;          // the two coarse cells around it (clamped into the grid)
     float w0 = 0.0f, w1 = 0.0f;  // their bilinear weights (0 for a cell outside the grid)
-    int nearest = 0;           // nearest coarse cell (clamped)
+    int nearest = 0;             // nearest coarse cell (clamped)
   };
   const double half_c = 0.5 * std::min(cw, ch);
   auto make_axis = [&](int n_full, int n_coarse, bool is_x) {
@@ -85,7 +85,8 @@ void upsample_preview(const Scene& scene, const EvaluationPlan& coarse_plan, con
         float acc[6];
         if (wsum > 0.0f) {
           const float inv = 1.0f / wsum;
-          for (int k = 0; k < 6; ++k) acc[k] = (w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k] + w[3] * c[3][k]) * inv;
+          for (int k = 0; k < 6; ++k)
+            acc[k] = (w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k] + w[3] * c[3][k]) * inv;
         } else {  // at the rim: the nearest coarse sample
           const float* n = cell.data() + 7 * (static_cast<std::size_t>(Y.nearest) * cw + X.nearest);
           for (int k = 0; k < 6; ++k) acc[k] = n[k];

@@ -25,16 +25,16 @@ namespace pmsim {
 
 namespace {
 
-constexpr int kFirstBands = 8;      // first pass: 50 nm bands (a coarse preview)
-constexpr int kMaxBands = 4096;     // ~0.1 nm: beyond this a level costs more than it can change
+constexpr int kFirstBands = 8;   // first pass: 50 nm bands (a coarse preview)
+constexpr int kMaxBands = 4096;  // ~0.1 nm: beyond this a level costs more than it can change
 
 // One render from a scene to convergence (or the requested sample counts), calling `publish`
 // after every pass. Progressive (the UI): every level is a full image, starting coarse. Final
 // (pmsim-render): the first level is only computed on a subset of the units, enough to estimate
 // the error of the next, full level. Returns false when cancelled.
 template <class Publish>
-bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock::time_point t0, BufferPool* pool,
-                std::uint64_t generation, bool progressive, Publish&& publish) {
+bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock::time_point t0,
+                BufferPool* pool, std::uint64_t generation, bool progressive, Publish&& publish) {
   int passes = 0;
   if (progressive && wants_preview(scene)) {
     const int factor = preview_factor(scene);
@@ -54,7 +54,8 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock
   std::size_t prev_stride = 0;  // 0: no previous level
   const bool mono = scene.render.single_wavelength_nm > 0;
   const bool one_level = fixed > 0 || mono;
-  for (int bands = one_level ? std::max(1, fixed) : (progressive ? kFirstBands : 2 * kFirstBands);; bands *= 2) {
+  for (int bands = one_level ? std::max(1, fixed) : (progressive ? kFirstBands : 2 * kFirstBands);;
+       bands *= 2) {
     const SpectralLevel level = make_spectral_level(plan, bands);
     const bool partial = !progressive && !one_level && prev_stride == 0;
     const std::size_t stride = partial ? std::max<std::size_t>(1, n_units / 8192) : 1;
@@ -79,7 +80,8 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock
     if (stopped || cancel) return false;
     // The error of this level against the previous one: unknown for the first level, 0 for the only one.
     std::optional<double> err;
-    if (prev_stride > 0) err = unit_error(plan, area, units, prev, std::max(prev_stride, n_units / 65536 + 1), cancel);
+    if (prev_stride > 0)
+      err = unit_error(plan, area, units, prev, std::max(prev_stride, n_units / 65536 + 1), cancel);
     if (cancel) return false;
     if (one_level) err = 0.0;
     const bool converged = one_level || (err && *err < scene.render.tolerance_de2000);
@@ -141,7 +143,8 @@ struct ProgressiveRenderer::Impl {
 
 ProgressiveRenderer::ProgressiveRenderer(int threads) : impl_(std::make_unique<Impl>()) {
   impl_->threads = threads;
-  impl_->arena = std::make_unique<tbb::task_arena>(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
+  impl_->arena =
+      std::make_unique<tbb::task_arena>(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
 }
 
 ProgressiveRenderer::~ProgressiveRenderer() { impl_->stop(); }

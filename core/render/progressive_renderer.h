@@ -22,7 +22,7 @@ class ProgressiveRenderer {
   // Cancels the work in flight and starts accumulating the new scene. Throws InputError if the
   // scene is invalid (and then keeps rendering the previous one).
   void restart(const Scene& scene);
-  void cancel();                          // stops work; snapshot() keeps the last image
+  void cancel();  // stops work; snapshot() keeps the last image
   // Asks the work in flight to stop and returns at once (thread-safe, never blocks): a UI calls
   // it the moment a control moves, so the cores are free before restart() (on another thread)
   // takes the new scene. Harmless if nothing runs; restart() clears it for the new work.

@@ -56,7 +56,7 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
   }
   const int padded = L.n + (L.n & 1);  // the modal kernel takes two bands at a time
   for (int a = 0; a < 3; ++a) {
-    L.aw[a].assign(padded, 0.0);   // zero weights: the padding band contributes nothing
+    L.aw[a].assign(padded, 0.0);  // zero weights: the padding band contributes nothing
     L.adw[a].assign(padded, 0.0);
   }
   L.inv_nm.assign(padded, 1.0 / L.nm.back());
@@ -74,7 +74,7 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
     for (int i = 0; i < L.n; ++i)
       for (std::size_t d = 0; d < plan.domains().size(); ++d)
         L.prepared[i].push_back(plan.domains()[d].crystal ? plan.prepare(static_cast<int>(d), L.nm[i])
-                                                     : PreparedPlate{});
+                                                          : PreparedPlate{});
   }
   return L;
 }
@@ -137,7 +137,7 @@ inline void sincos2(v2d x, v2d& s, v2d& c) {
   const v2d q = select(q0 < splat(0.0), q0 + 4.0, q0);  // 0 … 3
   const v2l odd = vabs(q - 2.0) == splat(1.0);
   const v2d ps = select(odd, cr, sr), pc = select(odd, sr, cr);
-  s = select(q >= splat(2.0), -ps, ps);         // sin < 0 in quadrants 2, 3
+  s = select(q >= splat(2.0), -ps, ps);             // sin < 0 in quadrants 2, 3
   c = select(vabs(q - 1.5) < splat(1.0), -pc, pc);  // cos < 0 in quadrants 1, 2
 }
 
@@ -155,8 +155,8 @@ glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* 
     const v2d il = load2(&L.inv_nm[i]);
     const v2d g = w0 * g0 + w1 * g1 + w2 * g2;
     const v2d dg = load2(&L.adw[0][i]) * g0 + load2(&L.adw[1][i]) * g1 + load2(&L.adw[2][i]) * g2;
-    const v2d phi = two_pi * g * il;                    // φ = 2πΓ/λ
-    const v2d dphi = two_pi * il * (dg - g * il);       // dφ/dλ
+    const v2d phi = two_pi * g * il;               // φ = 2πΓ/λ
+    const v2d dphi = two_pi * il * (dg - g * il);  // dφ/dλ
     const v2d c1 = w0 * k0 + w1 * k1 + w2 * k2;
     const v2d x = dphi * half_h;
     v2d s0, c0, sx, cx;
@@ -185,7 +185,8 @@ glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, in
       const int D = plan.dirs_of(unit);
       glm::dvec3 xyz(0.0);
       for (int d = 0; d < D; ++d)
-        xyz += modal_plain_xyz(plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d], L, va, vb);
+        xyz += modal_plain_xyz(plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d], L,
+                               va, vb);
       xyz /= D;
       for (int k = 0; k < 3; ++k)
         if (!std::isfinite(xyz[k])) xyz[k] = 0.0;
@@ -206,7 +207,7 @@ glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, in
       const double lam = L.nm[i];
       const double g = w[0] * m.gamma_nm[0] + w[1] * m.gamma_nm[1] + w[2] * m.gamma_nm[2];
       const double dg = dw[0] * m.gamma_nm[0] + dw[1] * m.gamma_nm[1] + dw[2] * m.gamma_nm[2];
-      const double phi = two_pi * g / lam;                      // φ = 2πΓ/λ
+      const double phi = two_pi * g / lam;                        // φ = 2πΓ/λ
       const double dphi = two_pi * (dg / lam - g / (lam * lam));  // dφ/dλ
       double c[5];
       for (int k = 0; k < 5; ++k) c[k] = w[0] * m.c[k][0] + w[1] * m.c[k][1] + w[2] * m.c[k][2];

@@ -16,11 +16,11 @@ namespace pmsim {
 
 struct SpectralLevel {
   int n = 0;
-  bool monochromatic = false;              // render.single_wavelength_nm: one line, weight 1
+  bool monochromatic = false;  // render.single_wavelength_nm: one line, weight 1
   double band_nm = 0.0;
   std::vector<double> nm;
-  std::vector<glm::dvec3> weight;          // W = ∫_band S·(x̄,ȳ,z̄) dλ / ∫ S·ȳ dλ
-  std::vector<glm::dvec3> moment;          // M = ∫_band w(λ)·(λ − λc) dλ (the weights' slope)
+  std::vector<glm::dvec3> weight;  // W = ∫_band S·(x̄,ȳ,z̄) dλ / ∫ S·ȳ dλ
+  std::vector<glm::dvec3> moment;  // M = ∫_band w(λ)·(λ − λc) dλ (the weights' slope)
   std::vector<std::array<double, 3>> anchor_w, anchor_dw;  // modal anchor weights at λc (and d/dλ)
   std::vector<TrainState> train;
   std::vector<std::vector<PreparedPlate>> prepared;  // [band][domain], exact plate model only

@@ -58,8 +58,8 @@ DifferenceStats difference_stats(const std::vector<float>& a, const std::vector<
   return s;
 }
 
-std::vector<float> difference_image(const std::vector<float>& a, const std::vector<float>& b,
-                                    double gain, bool negative) {
+std::vector<float> difference_image(const std::vector<float>& a, const std::vector<float>& b, double gain,
+                                    bool negative) {
   std::vector<float> out(std::min(a.size(), b.size()));
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double d = std::min(1.0, gain * std::abs(static_cast<double>(a[i]) - b[i]));
@@ -98,8 +98,7 @@ TirSpotStats tir_spot_stats(const Scene3dDescription& desc, const std::vector<fl
         if (e.type == LensEvent::Type::Tir) tir += e.intensity;
       // Light that entered the glass: all but the depth-0 reflection at the entry point P1.
       LensHit p1;
-      lens.geometry().intersect(in.origin, d, std::numeric_limits<double>::infinity(),
-                                LensSurface::None, p1);
+      lens.geometry().intersect(in.origin, d, std::numeric_limits<double>::infinity(), LensSurface::None, p1);
       entered = b.incident;
       for (const PolarizedRay& r : b.rays)
         if (r.depth == 0 && glm::length(r.origin - p1.point) < 1e-9 * lens.geometry().size_mm())

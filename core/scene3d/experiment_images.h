@@ -19,13 +19,11 @@ struct DifferenceStats {
 DifferenceStats difference_stats(const std::vector<float>& a, const std::vector<float>& b,
                                  const LensMask& mask);
 // |a − b|·gain per channel; negative = true gives 1 − that (the paper's "negative difference").
-std::vector<float> difference_image(const std::vector<float>& a, const std::vector<float>& b,
-                                    double gain, bool negative);
+std::vector<float> difference_image(const std::vector<float>& a, const std::vector<float>& b, double gain,
+                                    bool negative);
 
 // Rec. 709 / sRGB luminance of linear RGB.
-inline double luminance(const float* rgb) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
+inline double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 struct TirSpotStats {
   double threshold = 0.01;  // luminance below which a pixel counts as black

@@ -129,8 +129,6 @@ RayConeResult scan(const RayConeSetup& s, int samples, double eta_limit) {
 
 RayConeResult ray_cone(const RayConeSetup& s, int samples) { return scan(s, samples, -1.0); }
 
-RayConeResult ray_cone_at(const RayConeSetup& s, double eta, int samples) {
-  return scan(s, samples, eta);
-}
+RayConeResult ray_cone_at(const RayConeSetup& s, double eta, int samples) { return scan(s, samples, eta); }
 
 }  // namespace pmsim

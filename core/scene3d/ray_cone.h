@@ -28,7 +28,7 @@ struct RayConeSetup {
   double lens_radius_mm = 4.25;   // RL
   double ledge_mm = 0.3;
   double camera_height_mm = std::numeric_limits<double>::infinity();  // OC
-  int max_depth = 5;              // dT
+  int max_depth = 5;                                                  // dT
   // Intensities: the SML's default mode 1 (TIR ends the branch, paper §7) or mode 2 (split).
   // The cleanliness of a path is always judged on its geometry, TIR or not.
   // Paths without a direct image (TIR at P2, I2 = 0) are left out of the η4, η6 maxima: their
@@ -42,7 +42,7 @@ LensSpec ray_cone_lens(const RayConeSetup& s);
 double ray_cone_reference_z(const RayConeSetup& s);
 
 struct RayConePath {
-  bool clean = false;  // enters the lens and reaches P6 without touching the ledge
+  bool clean = false;                   // enters the lens and reaches P6 without touching the ledge
   double I2 = 0.0, I4 = 0.0, I6 = 0.0;  // intensities of Out2, Out4, Out6 for I0 = 1
   double eta4() const { return I2 + I4 + I6 > 0.0 ? I4 / (I2 + I4 + I6) : 0.0; }
   double eta6() const { return I2 + I4 + I6 > 0.0 ? I6 / (I2 + I4 + I6) : 0.0; }

@@ -27,8 +27,7 @@ double smits_reflectance(const glm::dvec3& rgb_linear, double wavelength_nm) {
   double v;
   if (r <= g && r <= b) {
     v = r * kWhite[bin];
-    v += g <= b ? (g - r) * kCyan[bin] + (b - g) * kBlue[bin]
-                : (b - r) * kCyan[bin] + (g - b) * kGreen[bin];
+    v += g <= b ? (g - r) * kCyan[bin] + (b - g) * kBlue[bin] : (b - r) * kCyan[bin] + (g - b) * kGreen[bin];
   } else if (g <= r && g <= b) {
     v = g * kWhite[bin];
     v += r <= b ? (r - g) * kMagenta[bin] + (b - r) * kBlue[bin]

@@ -23,8 +23,7 @@ class Reader {
     if (!j.is_object()) r_.fail("", j, "expected an object");
   }
 
-  [[noreturn]] void fail(const std::string& key, const nlohmann::json& v,
-                         const std::string& why) const {
+  [[noreturn]] void fail(const std::string& key, const nlohmann::json& v, const std::string& why) const {
     r_.fail(key, v, why);
   }
   std::string key_path(const std::string& key) const { return r_.path(key); }
@@ -117,8 +116,7 @@ Illuminant read_illuminant(const Reader& r, const std::string& key) {
 }
 
 // Orthogonalises u against n; the rectangle of a plane or area light is spanned by u and n × u.
-glm::dvec3 tangent(const Reader& r, const std::string& key, const glm::dvec3& n,
-                   const glm::dvec3& def) {
+glm::dvec3 tangent(const Reader& r, const std::string& key, const glm::dvec3& n, const glm::dvec3& def) {
   glm::dvec3 u = r.has(key) ? r.direction(key, def) : def;
   u = u - (u.x * n.x + u.y * n.y + u.z * n.z) * n;
   const double len = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
@@ -133,18 +131,15 @@ glm::dvec3 tangent(const Reader& r, const std::string& key, const glm::dvec3& n,
 }
 
 Scene3dCamera parse_camera(const Reader& r) {
-  r.only({"position", "look_at", "up", "fov_deg", "width", "height", "samples_per_pixel",
-          "filter"});
+  r.only({"position", "look_at", "up", "fov_deg", "width", "height", "samples_per_pixel", "filter"});
   Scene3dCamera c;
   c.position = r.vec3("position", c.position);
   c.look_at = r.vec3("look_at", c.look_at);
   const glm::dvec3 d = c.look_at - c.position;
   if (!(d.x * d.x + d.y * d.y + d.z * d.z > 1e-18))
-    r.fail("look_at", r.has("look_at") ? r.at("look_at") : nlohmann::json(),
-           "must differ from position");
+    r.fail("look_at", r.has("look_at") ? r.at("look_at") : nlohmann::json(), "must differ from position");
   c.up = r.direction("up", c.up);
-  const glm::dvec3 cr{d.y * c.up.z - d.z * c.up.y, d.z * c.up.x - d.x * c.up.z,
-                      d.x * c.up.y - d.y * c.up.x};
+  const glm::dvec3 cr{d.y * c.up.z - d.z * c.up.y, d.z * c.up.x - d.x * c.up.z, d.x * c.up.y - d.y * c.up.x};
   if (!(cr.x * cr.x + cr.y * cr.y + cr.z * cr.z > 1e-18 * (d.x * d.x + d.y * d.y + d.z * d.z)))
     r.fail("up", r.has("up") ? r.at("up") : nlohmann::json(), "must not be parallel to the view");
   c.fov_deg = r.number("fov_deg", c.fov_deg, 0.1, 170.0);
@@ -161,8 +156,8 @@ Scene3dCamera parse_camera(const Reader& r) {
 }
 
 Scene3dRenderSettings parse_render(const Reader& r) {
-  r.only({"mode", "wavelengths", "max_depth", "lens_depth", "fresnel", "tir", "exposure",
-          "background", "ambient"});
+  r.only({"mode", "wavelengths", "max_depth", "lens_depth", "fresnel", "tir", "exposure", "background",
+          "ambient"});
   Scene3dRenderSettings s;
   s.mode = r.choice("mode", Scene3dMode::Spectral, kModes);
   s.wavelengths = r.integer("wavelengths", s.wavelengths, 2, 81);
@@ -190,8 +185,7 @@ Scene3dLight parse_light(const Reader& r) {
     l.position = r.vec3("position", l.position);
     l.intensity = r.number("intensity", l.intensity, 0.0, 1e15);
   } else {
-    r.only({"type", "center", "normal", "u_axis", "size_mm", "radiance", "emission", "samples",
-            "visible"});
+    r.only({"type", "center", "normal", "u_axis", "size_mm", "radiance", "emission", "samples", "visible"});
     r.need("center");
     l.type = Scene3dLight::Type::Area;
     l.center = r.vec3("center", l.center);
@@ -250,8 +244,7 @@ Scene3dMaterial parse_material(const Reader& r, const std::string& name) {
 
 // Minimal Wavefront OBJ: "v x y z" and "f a b c ..." (1-based or negative indices, "a/b/c"
 // forms; polygons fanned into triangles).
-void load_obj(const Reader& r, const std::string& key, const std::string& path,
-              Scene3dObject& o) {
+void load_obj(const Reader& r, const std::string& key, const std::string& path, Scene3dObject& o) {
   std::ifstream in(path);
   if (!in) r.fail(key, r.at(key), "cannot open the mesh file");
   std::string line;
@@ -278,8 +271,8 @@ void load_obj(const Reader& r, const std::string& key, const std::string& path,
         }
         const int n = static_cast<int>(o.vertices.size());
         k = k < 0 ? n + k : k - 1;
-        if (k < 0 || k >= n) r.fail(key, r.at(key), "face index out of range on line " +
-                                                         std::to_string(line_no));
+        if (k < 0 || k >= n)
+          r.fail(key, r.at(key), "face index out of range on line " + std::to_string(line_no));
         idx.push_back(k);
       }
       for (std::size_t i = 2; i < idx.size(); ++i) o.triangles.push_back({idx[0], idx[i - 1], idx[i]});
@@ -292,8 +285,10 @@ Scene3dObject parse_object(const Reader& r, const std::vector<Scene3dMaterial>& 
   Scene3dObject o;
   r.need("type");
   using Type = Scene3dObject::Type;
-  static const NameTable<Type> kTypes = {{"plane", Type::Plane}, {"box", Type::Box},
-                                         {"sphere", Type::Sphere}, {"mesh", Type::Mesh},
+  static const NameTable<Type> kTypes = {{"plane", Type::Plane},
+                                         {"box", Type::Box},
+                                         {"sphere", Type::Sphere},
+                                         {"mesh", Type::Mesh},
                                          {"lens", Type::Lens}};
   o.type = r.choice("type", Type::Plane, kTypes);
   auto material = [&] {

@@ -33,14 +33,14 @@ enum class Scene3dMode { Spectral, Rgb };
 
 struct Scene3dRenderSettings {
   Scene3dMode mode = Scene3dMode::Spectral;
-  int wavelengths = 81;       // spectral: uniform 380–780 nm (81 = 5 nm steps, the paper's nSp)
-  int max_depth = 8;          // Whitted tree depth (surface interactions)
-  int lens_depth = 5;         // the paper's dT: internal reflections followed inside a lens
+  int wavelengths = 81;  // spectral: uniform 380–780 nm (81 = 5 nm steps, the paper's nSp)
+  int max_depth = 8;     // Whitted tree depth (surface interactions)
+  int lens_depth = 5;    // the paper's dT: internal reflections followed inside a lens
   FresnelModel fresnel = FresnelModel::Exact;  // render.fresnel: exact|schlick
-  TirMode tir = TirMode::Stop;  // the paper's SML mode 1 (stop) or 2 (split into ⟂, ∥)
-  double exposure = 1.0;      // multiplies the linear RGB result
-  glm::dvec3 background_rgb{0.0};  // radiance of rays leaving the scene (linear sRGB)
-  double ambient = 0.0;       // Whitted's ambient term, fraction of the diffuse colour
+  TirMode tir = TirMode::Stop;                 // the paper's SML mode 1 (stop) or 2 (split into ⟂, ∥)
+  double exposure = 1.0;                       // multiplies the linear RGB result
+  glm::dvec3 background_rgb{0.0};              // radiance of rays leaving the scene (linear sRGB)
+  double ambient = 0.0;                        // Whitted's ambient term, fraction of the diffuse colour
 };
 
 struct Scene3dLight {
@@ -53,8 +53,8 @@ struct Scene3dLight {
   glm::dvec3 center{0.0}, normal{0.0, 0.0, -1.0}, u_axis{1.0, 0.0, 0.0};
   glm::dvec2 size_mm{10.0, 10.0};
   double radiance = 1.0;
-  int samples = 4;       // n×n stratified samples for soft shadows
-  bool visible = true;   // camera and reflected rays see the emitting rectangle
+  int samples = 4;      // n×n stratified samples for soft shadows
+  bool visible = true;  // camera and reflected rays see the emitting rectangle
 };
 
 struct Scene3dMaterial {
@@ -71,18 +71,18 @@ struct Scene3dMaterial {
 
 struct Scene3dObject {
   enum class Type { Plane, Box, Sphere, Mesh, Lens } type = Type::Plane;
-  std::string key;       // "objects[3]" for messages
-  int material = -1;     // index into Scene3dDescription::materials (not used by lenses)
+  std::string key;    // "objects[3]" for messages
+  int material = -1;  // index into Scene3dDescription::materials (not used by lenses)
   glm::dvec3 center{0.0};
   // Plane: a finite rectangle.
   glm::dvec3 normal{0.0, 1.0, 0.0}, u_axis{1.0, 0.0, 0.0};
   glm::dvec2 size_mm{100.0, 100.0};
   // Box: full edge lengths, rotated by rotation_deg (x, then y, then z) about its centre.
   glm::dvec3 box_size_mm{10.0}, rotation_deg{0.0};
-  double radius_mm = 5.0;  // sphere
-  std::vector<glm::dvec3> vertices;           // mesh
-  std::vector<glm::ivec3> triangles;          // mesh
-  nlohmann::json lens;     // lens: the LensSpec keys, parsed by the lens module
+  double radius_mm = 5.0;             // sphere
+  std::vector<glm::dvec3> vertices;   // mesh
+  std::vector<glm::ivec3> triangles;  // mesh
+  nlohmann::json lens;                // lens: the LensSpec keys, parsed by the lens module
 };
 
 struct Scene3dDescription {

@@ -34,8 +34,7 @@ Scene3dImage render_scene3d(const Scene3dDescription& desc) {
   img.height = H;
   img.rgb_linear.assign(static_cast<std::size_t>(W) * H * 3, 0.0f);
   const auto t0 = std::chrono::steady_clock::now();
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, H, 16, 0, W, 16),
-                    [&](const tbb::blocked_range2d<int>& r) {
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, H, 16, 0, W, 16), [&](const tbb::blocked_range2d<int>& r) {
     for (int y = r.rows().begin(); y < r.rows().end(); ++y)
       for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
         glm::dvec3 sum(0.0);
@@ -54,8 +53,7 @@ Scene3dImage render_scene3d(const Scene3dDescription& desc) {
         for (int c = 0; c < 3; ++c) out[c] = std::isfinite(sum[c]) ? static_cast<float>(sum[c]) : 0.0f;
       }
   });
-  img.time_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  img.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const Scene3dRenderSettings& rs = desc.render;
   img.settings["type"] = "scene3d";
   img.settings["mode"] = rs.mode == Scene3dMode::Spectral ? "spectral" : "rgb";

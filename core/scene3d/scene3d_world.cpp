@@ -109,8 +109,8 @@ void Scene3dWorld::build() {
         break;
       case Scene3dObject::Type::Sphere: {
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-        auto* p = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+        auto* p = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
         p[0] = static_cast<float>(o.center.x);
         p[1] = static_cast<float>(o.center.y);
         p[2] = static_cast<float>(o.center.z);
@@ -155,20 +155,18 @@ Scene3dWorld::~Scene3dWorld() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-void Scene3dWorld::add_triangles(const std::vector<glm::dvec3>& v,
-                                 const std::vector<glm::ivec3>& t, GeometryInfo info) {
+void Scene3dWorld::add_triangles(const std::vector<glm::dvec3>& v, const std::vector<glm::ivec3>& t,
+                                 GeometryInfo info) {
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                         v.size()));
+  auto* vb = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
   for (std::size_t i = 0; i < v.size(); ++i) {
     vb[3 * i] = static_cast<float>(v[i].x);
     vb[3 * i + 1] = static_cast<float>(v[i].y);
     vb[3 * i + 2] = static_cast<float>(v[i].z);
   }
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
-                                                            RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                            t.size()));
+  auto* ib = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), t.size()));
   info.tri_normals.resize(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) {
     ib[3 * i] = static_cast<unsigned>(t[i].x);
@@ -197,14 +195,14 @@ void Scene3dWorld::add_lens(const Scene3dObject& o, int object_index) {
   }
   // The lens module's user geometry (double-precision LensGeometry behind Embree callbacks).
   const unsigned id = attach_lens(device_, scene_, lenses_.back()->geometry());
-  GeometryInfo info{Scene3dSurfaceKind::Lens, object_index, -1,
-                    static_cast<int>(lenses_.size() - 1), -1, {}, {}};
+  GeometryInfo info{
+      Scene3dSurfaceKind::Lens, object_index, -1, static_cast<int>(lenses_.size() - 1), -1, {}, {}};
   if (geometry_.size() <= id) geometry_.resize(id + 1, info);
   geometry_[id] = info;
 }
 
-bool Scene3dWorld::intersect(const glm::dvec3& origin, const glm::dvec3& dir, double t_min,
-                             double t_max, Scene3dHit& hit) const {
+bool Scene3dWorld::intersect(const glm::dvec3& origin, const glm::dvec3& dir, double t_min, double t_max,
+                             Scene3dHit& hit) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;

@@ -56,8 +56,7 @@ class Scene3dWorld {
     std::vector<glm::dvec3> tri_normals;  // per triangle, double precision
     glm::dvec3 sphere_center{0.0};
   };
-  void add_triangles(const std::vector<glm::dvec3>& v, const std::vector<glm::ivec3>& t,
-                     GeometryInfo info);
+  void add_triangles(const std::vector<glm::dvec3>& v, const std::vector<glm::ivec3>& t, GeometryInfo info);
   void build();
   void add_lens(const Scene3dObject& o, int object_index);
 

@@ -14,11 +14,10 @@ namespace pmsim {
 Objective objective_from_json(const nlohmann::json& j, const std::string& file) {
   if (!j.is_object()) throw InputError(file, "", "", "an objective must be a JSON object");
   const JsonReader r(j, file);
-  r.refuse_unknown_keys({"type", "source", "name", "lenses", "object_z_mm", "na", "field_max_mm",
-                         "wavelength_nm"});
+  r.refuse_unknown_keys(
+      {"type", "source", "name", "lenses", "object_z_mm", "na", "field_max_mm", "wavelength_nm"});
   if (!j.contains("type") || j.at("type") != "objective")
-    throw InputError(file, "type", j.contains("type") ? shown(j.at("type")) : "",
-                     "must be \"objective\"");
+    throw InputError(file, "type", j.contains("type") ? shown(j.at("type")) : "", "must be \"objective\"");
   Objective o;
   o.name = r.get_or<std::string>("name", "objective");
   o.object_z_mm = r.get_or("object_z_mm", 0.0, Range::closed(-1e6, 1e6));
@@ -64,8 +63,8 @@ double through_objective(const std::vector<std::unique_ptr<Lens>>& lenses, doubl
   opt.tir = TirMode::Stop;
   opt.direction = TraceDirection::Forward;
   double power = 0.0;
-  const glm::dvec3 s = glm::normalize(glm::cross(dir, std::abs(dir.x) < 0.9 ? glm::dvec3(1, 0, 0)
-                                                                            : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 s =
+      glm::normalize(glm::cross(dir, std::abs(dir.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
   for (const glm::dvec3& pol : {s, glm::normalize(glm::cross(dir, s))}) {
     PolarizedRay r;
     r.origin = origin;

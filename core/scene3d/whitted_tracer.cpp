@@ -37,8 +37,7 @@ const SpectralFrame& frame81() {
     s.wl = uniform_wavelengths(81);
     double k = 0.0;
     for (int i = 0; i < s.wl.size(); ++i)
-      k += s.wl.weight_nm[i] * illuminant_spd(Illuminant::D65, s.wl.nm[i]) *
-           cie1931_xyz_bar(s.wl.nm[i]).y;
+      k += s.wl.weight_nm[i] * illuminant_spd(Illuminant::D65, s.wl.nm[i]) * cie1931_xyz_bar(s.wl.nm[i]).y;
     s.k_d65 = k;
     return s;
   }();
@@ -50,15 +49,13 @@ glm::dvec3 rgb_under(const std::vector<double>& rho81, Illuminant illum) {
   const SpectralFrame& f = frame81();
   glm::dvec3 xyz(0.0);
   for (int i = 0; i < f.wl.size(); ++i)
-    xyz += f.wl.weight_nm[i] * rho81[i] * illuminant_spd(illum, f.wl.nm[i]) *
-           cie1931_xyz_bar(f.wl.nm[i]);
+    xyz += f.wl.weight_nm[i] * rho81[i] * illuminant_spd(illum, f.wl.nm[i]) * cie1931_xyz_bar(f.wl.nm[i]);
   return xyz_to_linear_srgb(xyz / f.k_d65);
 }
 
 }  // namespace
 
-WhittedTracer::WhittedTracer(const Scene3dWorld& world)
-    : world_(world), desc_(world.description()) {
+WhittedTracer::WhittedTracer(const Scene3dWorld& world) : world_(world), desc_(world.description()) {
   const Scene3dRenderSettings& rs = desc_.render;
   spectral_ = rs.mode == Scene3dMode::Spectral;
   eps_ = 1e-6 * world.scene_size_mm() + 1e-7;
@@ -75,8 +72,7 @@ WhittedTracer::WhittedTracer(const Scene3dWorld& world)
     const SampledWavelengths wl = uniform_wavelengths(rs.wavelengths);
     double k = 0.0;
     for (int i = 0; i < wl.size(); ++i)
-      k += wl.weight_nm[i] * illuminant_spd(Illuminant::D65, wl.nm[i]) *
-           cie1931_xyz_bar(wl.nm[i]).y;
+      k += wl.weight_nm[i] * illuminant_spd(Illuminant::D65, wl.nm[i]) * cie1931_xyz_bar(wl.nm[i]).y;
     for (int i = 0; i < wl.size(); ++i) {
       nm_.push_back(wl.nm[i]);
       // XYZ = Σ w_i·L(λ_i)·x̄(λ_i)/K: a white diffuser under D65 of unit strength has Y = 1.
@@ -134,8 +130,8 @@ WhittedTracer::WhittedTracer(const Scene3dWorld& world)
     try {
       for (int i = 0; i < nc; ++i) m[i] = world.lenses()[k]->media(nm_[i]);
     } catch (const std::out_of_range& e) {
-      throw InputError(desc_.file, "lens " + std::to_string(k) + ".glass",
-                       world.lenses()[k]->spec().glass, e.what());
+      throw InputError(desc_.file, "lens " + std::to_string(k) + ".glass", world.lenses()[k]->spec().glass,
+                       e.what());
     }
     lens_media_.push_back(std::move(m));
   }
@@ -191,8 +187,8 @@ void WhittedTracer::radiance(const glm::dvec3& origin, const glm::dvec3& dir, in
   shade(origin, dir, hit, depth, ch, pol, w, acc);
 }
 
-void WhittedTracer::shade(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit,
-                          int depth, int ch, const glm::dvec3* pol, double w, Acc acc) const {
+void WhittedTracer::shade(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit, int depth,
+                          int ch, const glm::dvec3* pol, double w, Acc acc) const {
   switch (hit.kind) {
     case Scene3dSurfaceKind::Diffuse:
       shade_diffuse(dir, hit, ch, w, acc);
@@ -281,8 +277,8 @@ void WhittedTracer::shade_diffuse(const glm::dvec3& dir, const Scene3dHit& hit, 
       const double area = l.size_mm.x * l.size_mm.y;
       // Deterministic jitter from the shading point, so images are repeatable and the
       // stratification does not print a visible grid into soft shadows.
-      std::uint64_t h = std::hash<double>()(hit.point.x * 73856093.0 + hit.point.y * 19349663.0 +
-                                            hit.point.z * 83492791.0);
+      std::uint64_t h =
+          std::hash<double>()(hit.point.x * 73856093.0 + hit.point.y * 19349663.0 + hit.point.z * 83492791.0);
       auto rnd = [&h] {
         h ^= h >> 33;
         h *= 0xff51afd7ed558ccdULL;
@@ -311,9 +307,8 @@ void WhittedTracer::shade_diffuse(const glm::dvec3& dir, const Scene3dHit& hit, 
   }
 }
 
-void WhittedTracer::shade_glass(const glm::dvec3& origin, const glm::dvec3& dir,
-                                const Scene3dHit& hit, int depth, int ch, const glm::dvec3& pol,
-                                double w, Acc acc) const {
+void WhittedTracer::shade_glass(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit,
+                                int depth, int ch, const glm::dvec3& pol, double w, Acc acc) const {
   const int c = std::max(ch, 0);
   const double lambda = nm_[c];
   if (hit.kind == Scene3dSurfaceKind::Lens) {
@@ -328,12 +323,10 @@ void WhittedTracer::shade_glass(const glm::dvec3& origin, const glm::dvec3& dir,
     in.wavelength_nm = lambda;
     in.intensity = 1.0;
     in.pol = pol;
-    trace_lens(world_.lenses()[hit.lens]->geometry(), lens_media_[hit.lens][c], in, lens_options_,
-               b);
+    trace_lens(world_.lenses()[hit.lens]->geometry(), lens_media_[hit.lens][c], in, lens_options_, b);
     // Copy: deeper levels may grow the pool and move this bundle.
     const std::vector<PolarizedRay> rays = b.rays;
-    for (const PolarizedRay& o : rays)
-      radiance(o.origin, o.dir, depth + 1, ch, &o.pol, w * o.intensity, acc);
+    for (const PolarizedRay& o : rays) radiance(o.origin, o.dir, depth + 1, ch, &o.pol, w * o.intensity, acc);
     return;
   }
   const double n_glass = glass_n_[hit.material][c];
@@ -346,14 +339,13 @@ void WhittedTracer::shade_glass(const glm::dvec3& origin, const glm::dvec3& dir,
   in.intensity = 1.0;
   in.pol = pol;
   InteractionResult res;
-  interact(in, hit.point, hit.normal, entering ? 1.0 : n_glass, entering ? n_glass : 1.0, fresnel_,
-           res);
+  interact(in, hit.point, hit.normal, entering ? 1.0 : n_glass, entering ? n_glass : 1.0, fresnel_, res);
   for (int k = 0; k < res.reflected_count; ++k)
     radiance(hit.point, res.reflected[k].dir, depth + 1, ch, &res.reflected[k].pol,
              w * res.reflected[k].intensity, acc);
   if (res.has_refracted)
-    radiance(hit.point, res.refracted.dir, depth + 1, ch, &res.refracted.pol,
-             w * res.refracted.intensity, acc);
+    radiance(hit.point, res.refracted.dir, depth + 1, ch, &res.refracted.pol, w * res.refracted.intensity,
+             acc);
 }
 
 }  // namespace pmsim

@@ -31,8 +31,7 @@ class WhittedTracer {
 
   // Linear sRGB arriving along a ray from the eye. filter_axis: transmission axis of an ideal
   // linear polarizer in front of the eye (unit, ⟂ dir), or nullptr for no filter.
-  glm::dvec3 trace(const glm::dvec3& origin, const glm::dvec3& dir,
-                   const glm::dvec3* filter_axis) const;
+  glm::dvec3 trace(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3* filter_axis) const;
 
   int channels() const { return static_cast<int>(nm_.size()); }
   const std::vector<double>& wavelengths_nm() const { return nm_; }
@@ -42,25 +41,24 @@ class WhittedTracer {
 
  private:
   using Acc = double[kMaxChannels];
-  void radiance(const glm::dvec3& origin, const glm::dvec3& dir, int depth, int ch,
-                const glm::dvec3* pol, double w, Acc acc) const;
-  void shade(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit, int depth,
-             int ch, const glm::dvec3* pol, double w, Acc acc) const;
-  void shade_diffuse(const glm::dvec3& dir, const Scene3dHit& hit, int ch, double w,
-                     Acc acc) const;
-  void shade_glass(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit,
-                   int depth, int ch, const glm::dvec3& pol, double w, Acc acc) const;
+  void radiance(const glm::dvec3& origin, const glm::dvec3& dir, int depth, int ch, const glm::dvec3* pol,
+                double w, Acc acc) const;
+  void shade(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit, int depth, int ch,
+             const glm::dvec3* pol, double w, Acc acc) const;
+  void shade_diffuse(const glm::dvec3& dir, const Scene3dHit& hit, int ch, double w, Acc acc) const;
+  void shade_glass(const glm::dvec3& origin, const glm::dvec3& dir, const Scene3dHit& hit, int depth, int ch,
+                   const glm::dvec3& pol, double w, Acc acc) const;
   std::vector<double> spectrum_of_rgb(const glm::dvec3& rgb, Illuminant illum) const;
 
   const Scene3dWorld& world_;
   const Scene3dDescription& desc_;
   bool spectral_ = true;
   double eps_ = 1e-5;
-  std::vector<double> nm_;                        // per channel
-  std::vector<glm::dvec3> to_rgb_;                // channel value → linear sRGB
+  std::vector<double> nm_;                                     // per channel
+  std::vector<glm::dvec3> to_rgb_;                             // channel value → linear sRGB
   std::vector<std::vector<std::vector<double>>> reflectance_;  // [material][colour][channel]
-  std::vector<std::vector<double>> emission_;     // [light][channel]
-  std::vector<double> background_, ambient_;      // [channel]
+  std::vector<std::vector<double>> emission_;                  // [light][channel]
+  std::vector<double> background_, ambient_;                   // [channel]
   // Optical constants per glass material / lens, [index][channel]; RGB mode: one entry per
   // channel, all at 587.56 nm.
   std::vector<std::vector<double>> glass_n_, glass_mu_;

@@ -8,7 +8,7 @@ namespace pmsim {
 
 glm::dvec3 xyz_to_linear_srgb(const glm::dvec3& xyz);
 glm::dvec3 linear_srgb_to_xyz(const glm::dvec3& rgb);
-double srgb_encode(double linear);          // IEC 61966-2-1 transfer function, input in [0,1]
+double srgb_encode(double linear);  // IEC 61966-2-1 transfer function, input in [0,1]
 double srgb_decode(double encoded);
 // Clips to [0,1] per channel in linear RGB, then encodes and rounds; NaN maps to 0.
 std::uint8_t linear_to_srgb8(double linear);

@@ -17,8 +17,10 @@ double illuminant_spd(Illuminant illum, double wavelength_nm) {
 
 std::string_view illuminant_name(Illuminant illum) {
   switch (illum) {
-    case Illuminant::D65: return "D65";
-    case Illuminant::A: return "A";
+    case Illuminant::D65:
+      return "D65";
+    case Illuminant::A:
+      return "A";
   }
   return "?";
 }
@@ -26,8 +28,14 @@ std::string_view illuminant_name(Illuminant illum) {
 bool parse_illuminant(std::string_view name, Illuminant& out) {
   std::string upper(name);
   for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  if (upper == "D65") { out = Illuminant::D65; return true; }
-  if (upper == "A") { out = Illuminant::A; return true; }
+  if (upper == "D65") {
+    out = Illuminant::D65;
+    return true;
+  }
+  if (upper == "A") {
+    out = Illuminant::A;
+    return true;
+  }
   return false;
 }
 

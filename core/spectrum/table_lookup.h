@@ -10,8 +10,7 @@ namespace pmsim::detail {
 
 // Index of the table interval holding wavelength_nm and the fraction within it; throws
 // std::out_of_range (naming the caller) outside [380, 780] nm or for NaN.
-inline void visible_table_position(double wavelength_nm, const char* who, int& index,
-                                   double& fraction) {
+inline void visible_table_position(double wavelength_nm, const char* who, int& index, double& fraction) {
   using namespace cie_tables;
   constexpr double last_nm = kFirstNm + kStepNm * (kCount - 1);
   if (!(wavelength_nm >= kFirstNm && wavelength_nm <= last_nm)) {

@@ -25,8 +25,7 @@ void require_unit_interval(double u, const char* who) {
 // Composite trapezoid rule on n equally spaced nodes including both ends: weights h/2, h, …, h/2.
 SampledWavelengths uniform_wavelengths(int n) {
   if (n < 2) {
-    throw std::invalid_argument("uniform_wavelengths: need n >= 2 points, got " +
-                                std::to_string(n));
+    throw std::invalid_argument("uniform_wavelengths: need n >= 2 points, got " + std::to_string(n));
   }
   SampledWavelengths s;
   const double h = kRangeNm / (n - 1);

@@ -74,8 +74,10 @@ int material_parser(const std::uint8_t* data, std::size_t size) {
     for (double nm = 380; nm <= 780; nm += 5) {
       if (nm < m.min_wavelength_nm() || nm > m.max_wavelength_nm()) continue;
       const double n = m.n(nm), mu = m.attenuation_per_mm(nm);
-      check(std::isfinite(n) && (gas ? n >= 1.0 : n > 1.0), "material_parser: bad n(" + std::to_string(nm) + ") = " + std::to_string(n));
-      check(std::isfinite(mu) && mu >= 0.0, "material_parser: bad μ(" + std::to_string(nm) + ") = " + std::to_string(mu));
+      check(std::isfinite(n) && (gas ? n >= 1.0 : n > 1.0),
+            "material_parser: bad n(" + std::to_string(nm) + ") = " + std::to_string(n));
+      check(std::isfinite(mu) && mu >= 0.0,
+            "material_parser: bad μ(" + std::to_string(nm) + ") = " + std::to_string(mu));
     }
   } catch (const InputError&) {
     return 0;
@@ -164,7 +166,8 @@ int plate_jones(const std::uint8_t* data, std::size_t size) {
       !(wavelength_nm >= 380 && wavelength_nm <= 780) || !(rho >= 0 && rho < 1) || !std::isfinite(phi))
     return 0;
   try {
-    plate.crystal_to_lab = rotate_stage(biaxial ? biaxial_orientation(a, b) : uniaxial_orientation(a), stage_rad);
+    plate.crystal_to_lab =
+        rotate_stage(biaxial ? biaxial_orientation(a, b) : uniaxial_orientation(a), stage_rad);
   } catch (const std::invalid_argument&) {
     return 0;  // zero or parallel axes: the documented rejection
   }
@@ -184,10 +187,9 @@ int plate_jones(const std::uint8_t* data, std::size_t size) {
   ctx.precision(17);
   ctx << " crystal " << crystal->name() << " n " << crystal->principal_indices(wavelength_nm).x << ","
       << crystal->principal_indices(wavelength_nm).y << "," << crystal->principal_indices(wavelength_nm).z
-      << " a " << a.x << "," << a.y << "," << a.z << " b " << b.x << "," << b.y << "," << b.z
-      << " stage " << stage_rad << " d_um " << plate.thickness_um << " n_out " << plate.n_outside
-      << " fresnel " << plate.fresnel << " λ " << wavelength_nm << " k " << k_air.x << "," << k_air.y
-      << "," << k_air.z;
+      << " a " << a.x << "," << a.y << "," << a.z << " b " << b.x << "," << b.y << "," << b.z << " stage "
+      << stage_rad << " d_um " << plate.thickness_um << " n_out " << plate.n_outside << " fresnel "
+      << plate.fresnel << " λ " << wavelength_nm << " k " << k_air.x << "," << k_air.y << "," << k_air.z;
   const double s = largest_singular_value(J);
   check(std::isfinite(s), "plate_jones: non-finite Jones matrix" + ctx.str());
   // Passivity: power out ≤ power in, with or without the face amplitudes (plate.cpp); 1e-9
@@ -197,9 +199,11 @@ int plate_jones(const std::uint8_t* data, std::size_t size) {
   const double tolerance = 1e-9;
   char excess[40];
   std::snprintf(excess, sizeof excess, "%.3g", s - 1);
-  check(s <= 1 + tolerance, "plate_jones: Jones matrix adds power, σmax − 1 = " + std::string(excess) + ctx.str());
-  check(std::isfinite(m.retardation_nm) && m.retardation_nm >= 0 && std::isfinite(m.n1) && std::isfinite(m.n2),
-        "plate_modes: bad modes" + ctx.str());
+  check(s <= 1 + tolerance,
+        "plate_jones: Jones matrix adds power, σmax − 1 = " + std::string(excess) + ctx.str());
+  check(
+      std::isfinite(m.retardation_nm) && m.retardation_nm >= 0 && std::isfinite(m.n1) && std::isfinite(m.n2),
+      "plate_modes: bad modes" + ctx.str());
   return 0;
 }
 

@@ -39,8 +39,8 @@ void check_bundle(const LensBundle& b, const std::string& ctx) {
     check(finite3(r.origin.x, r.origin.y, r.origin.z) && finite3(r.dir.x, r.dir.y, r.dir.z) &&
               finite3(r.pol.x, r.pol.y, r.pol.z) && std::isfinite(r.intensity) &&
               std::isfinite(r.delta_rad) && std::isfinite(r.optical_path_mm),
-          "trace: non-finite outgoing ray origin " + str(r.origin) + " dir " + str(r.dir) +
-              " pol " + str(r.pol) + "\n" + ctx);
+          "trace: non-finite outgoing ray origin " + str(r.origin) + " dir " + str(r.dir) + " pol " +
+              str(r.pol) + "\n" + ctx);
     check(r.intensity >= 0.0, "trace: negative intensity\n" + ctx);
     check(std::abs(glm::length(r.dir) - 1.0) < 1e-9, "trace: dir not unit " + str(r.dir) + "\n" + ctx);
     check(std::abs(glm::length(r.pol) - 1.0) < 1e-9, "trace: pol not unit " + str(r.pol) + "\n" + ctx);
@@ -89,7 +89,8 @@ int lens_parser(const std::uint8_t* data, std::size_t size) {
     spec = load_lens_spec(path);
     const Lens lens(spec);  // geometry validation and the glass/medium look-up
     // An accepted lens must load back from its own JSON.
-    const LensSpec back = lens_spec_from_json(nlohmann::json::parse(lens_spec_to_json(spec).dump()), "round-trip");
+    const LensSpec back =
+        lens_spec_from_json(nlohmann::json::parse(lens_spec_to_json(spec).dump()), "round-trip");
     const Lens again(back);
     check(again.geometry().thickness_mm() == lens.geometry().thickness_mm(),
           "lens_parser: thickness changes on save → load");
@@ -149,8 +150,7 @@ int trace_lens(const std::uint8_t* data, std::size_t size) {
       !(glm::length(dir) > 1e-9) || !std::isfinite(pol_angle) || !std::isfinite(in.wavelength_nm) ||
       !(in.wavelength_nm > 0) || !std::isfinite(in.intensity) || !(in.intensity >= 0) ||
       !std::isfinite(in.optical_path_mm) || !std::isfinite(in.delta_rad) ||
-      !(media.n_glass >= 1.0 && media.n_glass <= 5.0) ||
-      !(media.n_medium >= 1.0 && media.n_medium <= 5.0) ||
+      !(media.n_glass >= 1.0 && media.n_glass <= 5.0) || !(media.n_medium >= 1.0 && media.n_medium <= 5.0) ||
       !(media.attenuation_per_mm >= 0.0 && media.attenuation_per_mm < 1e6))
     return 0;
   in.dir = glm::normalize(dir);
@@ -172,9 +172,8 @@ int trace_lens(const std::uint8_t* data, std::size_t size) {
   std::ostringstream ctx;
   ctx.precision(17);
   ctx << "lens " << lens_spec_to_json(spec).dump() << " n_glass " << media.n_glass << " n_medium "
-      << media.n_medium << " mu " << media.attenuation_per_mm << " ray origin " << str(in.origin)
-      << " dir " << str(in.dir) << " pol " << str(in.pol) << " depth " << opt.max_depth
-      << " modes " << int(modes);
+      << media.n_medium << " mu " << media.attenuation_per_mm << " ray origin " << str(in.origin) << " dir "
+      << str(in.dir) << " pol " << str(in.pol) << " depth " << opt.max_depth << " modes " << int(modes);
   check_bundle(b, ctx.str());
   return 0;
 }
@@ -201,7 +200,8 @@ void trace_lens_seeds(const std::string& asset_dir, const std::string& out_dir) 
     } catch (const std::exception&) {
       continue;
     }
-    const double rays[3][6] = {{0, 0, -20, 0, 0, 1}, {0.5 * s.radius_mm, 0, -20, 0, 0, 1},
+    const double rays[3][6] = {{0, 0, -20, 0, 0, 1},
+                               {0.5 * s.radius_mm, 0, -20, 0, 0, 1},
                                {-0.8 * s.radius_mm, 0.3 * s.radius_mm, -5, 0.6, 0.2, 0.8}};
     for (int k = 0; k < 3; ++k) {
       ByteWriter w;
@@ -209,8 +209,8 @@ void trace_lens_seeds(const std::string& asset_dir, const std::string& out_dir) 
       for (int c = 0; c < 3; ++c) w.number(s.axis[c], -1, 1);
       w.number(s.radius_mm, 0, kRadius);
       const bool thick = s.thickness_mm.has_value();
-      w.byte(std::uint8_t((s.front_radius_mm == 0 ? 1 : 0) | (s.back_radius_mm == 0 ? 2 : 0) |
-                          (thick ? 4 : 0)));
+      w.byte(
+          std::uint8_t((s.front_radius_mm == 0 ? 1 : 0) | (s.back_radius_mm == 0 ? 2 : 0) | (thick ? 4 : 0)));
       if (s.front_radius_mm != 0) w.number(s.front_radius_mm, -kCap, kCap);
       if (s.back_radius_mm != 0) w.number(s.back_radius_mm, -kCap, kCap);
       w.number(thick ? *s.thickness_mm : s.ledge_mm.value_or(0), 0, kThick);

@@ -46,7 +46,8 @@ void check_round_trip(const Scene& s, const char* who) {
   }
   if (!warnings.empty()) fail(std::string(who) + ": saving then loading warns: " + warnings.front());
   const nlohmann::json j2 = scene_to_json(back);
-  check(j2 == j, std::string(who) + ": save → load changes the scene:\n" + j.dump() + "\n" + j2.dump());  // both dumped fine above
+  check(j2 == j, std::string(who) + ": save → load changes the scene:\n" + j.dump() + "\n" +
+                     j2.dump());  // both dumped fine above
 }
 
 std::vector<std::filesystem::path> json_files(const std::filesystem::path& dir) {
@@ -106,9 +107,9 @@ void scene_parser_seeds(const std::string& asset_dir, const std::string& out_dir
   int i = 0;
   for (const auto& p : json_files(std::filesystem::path(asset_dir) / "scenes"))
     write_file(out_dir + "/asset_" + p.filename().string(), read_text(p));
-  for (const char* extra : {"{}", "{\"type\":\"microscope\"}",
-                            "{\"sample\":{\"crystal\":{\"no\":1.5,\"ne\":1.6}}}",
-                            "{\"render\":{\"width\":1e9}}", "{\"sample\":{\"optic_axis\":[0,0,0]}}"})
+  for (const char* extra :
+       {"{}", "{\"type\":\"microscope\"}", "{\"sample\":{\"crystal\":{\"no\":1.5,\"ne\":1.6}}}",
+        "{\"render\":{\"width\":1e9}}", "{\"sample\":{\"optic_axis\":[0,0,0]}}"})
     write_file(out_dir + "/edge_" + std::to_string(i++) + ".json", std::string(extra));
 }
 

@@ -92,10 +92,9 @@ class ByteWriter {
 inline std::string write_scratch(const std::string& tag, const std::uint8_t* data, std::size_t size) {
   const char* own = std::getenv("PMSIM_FUZZ_SCRATCH");
   const char* dir = std::getenv("TMPDIR");
-  const std::string path =
-      own && *own ? std::string(own) + "/pmsim_fuzz_" + tag + ".json"
-                  : std::string(dir && *dir ? dir : "/tmp") + "/pmsim_fuzz_" + std::to_string(::getpid()) + "_" +
-                        tag + ".json";
+  const std::string path = own && *own ? std::string(own) + "/pmsim_fuzz_" + tag + ".json"
+                                       : std::string(dir && *dir ? dir : "/tmp") + "/pmsim_fuzz_" +
+                                             std::to_string(::getpid()) + "_" + tag + ".json";
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   f.close();

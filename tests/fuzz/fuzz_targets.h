@@ -20,8 +20,8 @@ namespace pmsim::fuzz {
   X(trace_lens)               \
   X(plate_jones)
 
-#define PMSIM_FUZZ_DECLARE(name)                                \
-  int name(const std::uint8_t* data, std::size_t size);         \
+#define PMSIM_FUZZ_DECLARE(name)                        \
+  int name(const std::uint8_t* data, std::size_t size); \
   void name##_seeds(const std::string& asset_dir, const std::string& out_dir);
 PMSIM_FUZZ_TARGETS(PMSIM_FUZZ_DECLARE)
 #undef PMSIM_FUZZ_DECLARE

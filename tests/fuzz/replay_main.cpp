@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s (%zu bytes)\n", t->name, f.string().c_str(), bytes.size());
     t->entry(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());  // aborts on a violation
   }
-  std::printf("%s: %zu inputs replayed, no oracle violated (%zu disabled)\n", t->name,
-              files.size() - skipped, skipped);
+  std::printf("%s: %zu inputs replayed, no oracle violated (%zu disabled)\n", t->name, files.size() - skipped,
+              skipped);
   return 0;
 }

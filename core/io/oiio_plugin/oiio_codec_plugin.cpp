@@ -25,7 +25,8 @@ void add_metadata(OIIO::ImageSpec& spec, const std::string& metadata_json) {
 // Encodes in memory (an IOVecOutput proxy) and writes the bytes with write_bytes_checked: OIIO's
 // PNG writer ignored a failed fwrite and reported success on a full disk (reliability finding F9).
 // Formats without proxy support write directly and are read back to verify them.
-void write_with_oiio(const std::string& tmp, const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* pixels) {
+void write_with_oiio(const std::string& tmp, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
+                     const void* pixels) {
   auto out = OIIO::ImageOutput::create(tmp);
   if (!out) throw std::runtime_error(OIIO::geterror());
   const bool proxy = out->supports("ioproxy");
