@@ -162,6 +162,7 @@ SectionMap parse_section(const std::string& path) {
     }
     if (const auto t = gr.optional_object("twin")) {
       g.twinned = true;
+      g.twin_law = "albite";
       g.twin_trace_rad = radians(t->get_or("trace_deg", 0.0));
       g.twin_width = t->get_or("width", 0.05, Range::above(0));
       const glm::dvec3 axis{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad), 0.0};

@@ -25,6 +25,7 @@ struct SectionGrain {
   double elongation_rad = 0.0;  // direction of the long side
   double weight = 1.0;          // larger: bigger cell
   bool twinned = false;
+  std::string twin_law;              // "albite", … (empty when untwinned)
   double twin_trace_rad = 0.0;       // direction of the lamella traces
   double twin_width = 0.05;          // lamella width (field units)
   glm::dmat3 twin_orientation{1.0};  // orientation of the odd lamellae
@@ -38,6 +39,13 @@ class SectionMap {
   std::string name, source, path;
   double thickness_um = 30.0;
   std::vector<SectionGrain> grains;
+  // The section's extent (centred on the origin, mm); beyond it the field shows the slide.
+  double width_mm = 4.0, height_mm = 4.0;
+
+  // Ground-truth label of a domain: 0 for the mounting medium or the slide, k ≥ 1 for grain k
+  // (grains[k − 1]: file order, so the same k in every render of the same section).
+  int grain_label(int domain) const { return domain / 2 + 1; }
+  const SectionGrain& grain_by_label(int k) const { return grains[k - 1]; }
 
   // Optical domain under a sample-frame point: 2·grain + (1 for an odd twin lamella).
   int domain_at(const glm::dvec2& p) const;
