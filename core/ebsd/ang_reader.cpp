@@ -225,8 +225,8 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
     }
     have = t.next_line(line);
   }
-  finish_point_count(m, i, "NROWS rows of NCOLS_ODD/NCOLS_EVEN points");
   positions.report(m);
+  finish_point_count(m, i, "NROWS rows of NCOLS_ODD/NCOLS_EVEN points");
   return m;
 }
 

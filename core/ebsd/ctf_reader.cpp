@@ -202,8 +202,8 @@ OrientationMap read_ctf(const std::string& path, const EbsdReadOptions& options)
     if (m.quality_kind != MapQuality::None) m.quality[i] = v[cols.bc];
     ++i;
   }
-  finish_point_count(m, i, "XCells × YCells");
   positions.report(m);
+  finish_point_count(m, i, "XCells × YCells");
   return m;
 }
 
