@@ -45,9 +45,12 @@ OrientationMap made_up_map(std::size_t points, MapGrid grid) {
   m.step_x_um = 2.0;
   m.step_y_um = grid == MapGrid::Hexagonal ? std::sqrt(3.0) : 2.0;
   m.vendor = grid == MapGrid::Hexagonal ? EbsdVendor::EdaxTsl : EbsdVendor::OxfordChannel5;
-  m.phases = {EbsdPhase{1, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "", 154},
-              EbsdPhase{2, "Plagioclase", "", UnitCell{8.16, 12.87, 7.11, 93.5, 116.2, 89.6}, CrystalSystem::Triclinic, "-1", "", 2},
-              EbsdPhase{3, "Garnet", "", UnitCell{11.53, 11.53, 11.53, 90, 90, 90}, CrystalSystem::Cubic, "m-3m", "", 230}};
+  m.phases = {EbsdPhase{1, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120},
+                        CrystalSystem::Trigonal, "-3m", "", 154},
+              EbsdPhase{2, "Plagioclase", "", UnitCell{8.16, 12.87, 7.11, 93.5, 116.2, 89.6},
+                        CrystalSystem::Triclinic, "-1", "", 2},
+              EbsdPhase{3, "Garnet", "", UnitCell{11.53, 11.53, 11.53, 90, 90, 90}, CrystalSystem::Cubic,
+                        "m-3m", "", 230}};
   m.allocate_points();
   for (std::size_t i = 0; i < m.size(); ++i) {
     const int r = m.row_of(i), c = static_cast<int>(i - m.row_start(r));
@@ -72,8 +75,9 @@ EbsdLoadResult time_load(const std::string& path, const char* format) {
   res.peak_rss_kb = status_kb("VmHWM");
   res.points = m.size();
   res.points_per_s = res.load_s > 0 ? static_cast<double>(m.size()) / res.load_s : 0.0;
-  res.map_mb = static_cast<double>(m.phase.size() + 4 * (m.phi1_rad.size() + m.Phi_rad.size() + m.phi2_rad.size() +
-                                                         m.quality.size())) / 1e6;
+  res.map_mb = static_cast<double>(m.phase.size() + 4 * (m.phi1_rad.size() + m.Phi_rad.size() +
+                                                         m.phi2_rad.size() + m.quality.size())) /
+               1e6;
   return res;
 }
 

@@ -10,14 +10,14 @@
 namespace pmsim {
 
 struct EbsdLoadResult {
-  std::string format;         // "ctf (square grid)", "ang (hexagonal grid)"
+  std::string format;  // "ctf (square grid)", "ang (hexagonal grid)"
   std::size_t points = 0;
-  double file_mb = 0.0;       // size of the text file
-  double load_s = 0.0;        // wall time of read_orientation_map
+  double file_mb = 0.0;  // size of the text file
+  double load_s = 0.0;   // wall time of read_orientation_map
   double points_per_s = 0.0;
-  double map_mb = 0.0;        // the OrientationMap's per-point arrays
-  long peak_rss_kb = -1;      // process peak RSS during the read (-1: /proc not available)
-  long rss_before_kb = -1;    // process RSS before it
+  double map_mb = 0.0;      // the OrientationMap's per-point arrays
+  long peak_rss_kb = -1;    // process peak RSS during the read (-1: /proc not available)
+  long rss_before_kb = -1;  // process RSS before it
 };
 
 // `points` ≈ the map size (rounded to a grid); the files go into a fresh folder under the system
