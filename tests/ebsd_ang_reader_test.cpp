@@ -191,8 +191,9 @@ TEST(EbsdAngReader, OddHeadersLoadTheSame) {
 
 TEST(EbsdAngReader, SevenColumnFilesAreSinglePhase) {
   // OIM version 2 files end at CI: no phase column.
-  const std::string header = kOnePhaseHex.substr(0, kOnePhaseHex.find("# GRID")) +
-                             "# GRID: SqrGrid\n# XSTEP: 1\n# YSTEP: 1\n# NCOLS_ODD: 2\n# NCOLS_EVEN: 2\n# NROWS: 1\n";
+  const std::string header =
+      kOnePhaseHex.substr(0, kOnePhaseHex.find("# GRID")) +
+      "# GRID: SqrGrid\n# XSTEP: 1\n# YSTEP: 1\n# NCOLS_ODD: 2\n# NCOLS_EVEN: 2\n# NROWS: 1\n";
   ScratchDir dir;
   const OrientationMap m = read_ang(dir.file("v2.ang", header + "1 1 1 0 0 100 0.5\n2 2 2 1 0 100 -1\n"));
   EXPECT_EQ(m.phase[0], 1);
@@ -228,15 +229,20 @@ TEST(EbsdAngReader, MalformedFilesNameFileLineAndField) {
       {"too few columns", h + "0.1 0.2 0.3 0 0 500\n", "line 34: column count"},
       {"unknown phase", h + replace(d, "0.700  2", "0.700  3"), "line 35: phase"},
       {"too many points", h + d + d.substr(0, d.find('\n') + 1), "line 40: data"},
-      {"bad symmetry", replace(h, "Symmetry              32", "Symmetry              99"), "line 9: Symmetry"},
-      {"bad lattice", replace(h, "4.913 4.913 5.405  90.000  90.000 120.000", "4.913 4.913 5.405"), "line 10: LatticeConstants"},
+      {"bad symmetry", replace(h, "Symmetry              32", "Symmetry              99"),
+       "line 9: Symmetry"},
+      {"bad lattice", replace(h, "4.913 4.913 5.405  90.000  90.000 120.000", "4.913 4.913 5.405"),
+       "line 10: LatticeConstants"},
       {"bad NROWS", replace(h, "NROWS: 2", "NROWS: two"), "line 28: NROWS"},
       {"bad GRID", replace(h, "SqrGrid", "TriGrid"), "line 23: GRID"},
       {"missing NROWS", replace(h, "# NROWS: 2\n", ""), "NROWS"},
       {"missing XSTEP", replace(h, "# XSTEP: 0.500000\n", ""), "XSTEP"},
       {"square grid with uneven rows", replace(h, "NCOLS_EVEN: 3", "NCOLS_EVEN: 2"), "NCOLS_EVEN"},
       {"phase without symmetry", replace(h, "# Symmetry              20\n", ""), "line 17: phase 2 Symmetry"},
-      {"no phase", "# GRID: SqrGrid\n# XSTEP: 1\n# YSTEP: 1\n# NCOLS_ODD: 1\n# NCOLS_EVEN: 1\n# NROWS: 1\n0 0 0 0 0 1 1 0\n", "Phase"},
+      {"no phase",
+       "# GRID: SqrGrid\n# XSTEP: 1\n# YSTEP: 1\n# NCOLS_ODD: 1\n# NCOLS_EVEN: 1\n# NROWS: 1\n0 0 0 0 0 1 1 "
+       "0\n",
+       "Phase"},
   };
   ScratchDir dir;
   for (const auto& c : cases) {
@@ -258,9 +264,11 @@ TEST(EbsdAngReader, WriterRoundTripOfALargeHexMap) {
   m.step_x_um = 1.0;
   m.step_y_um = std::sqrt(3.0) / 2.0;
   const UnitCell cubic{5.43, 5.43, 5.43, 90, 90, 90};
-  m.phases = {EbsdPhase{1, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "32", 154},
+  m.phases = {EbsdPhase{1, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120},
+                        CrystalSystem::Trigonal, "-3m", "32", 154},
               EbsdPhase{2, "Garnet", "", cubic, CrystalSystem::Cubic, "m-3m", "43", 230},
-              EbsdPhase{3, "Enstatite", "", UnitCell{18.23, 8.82, 5.18, 90, 90, 90}, CrystalSystem::Orthorhombic, "mmm", "22", 61}};
+              EbsdPhase{3, "Enstatite", "", UnitCell{18.23, 8.82, 5.18, 90, 90, 90},
+                        CrystalSystem::Orthorhombic, "mmm", "22", 61}};
   m.allocate_points();
   for (std::size_t i = 0; i < m.size(); ++i) {
     m.phase[i] = i % 11 == 0 ? 0 : static_cast<std::uint8_t>(1 + i % 3);

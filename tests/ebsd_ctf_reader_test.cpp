@@ -155,7 +155,8 @@ TEST(EbsdCtfReader, OddHeadersLoadTheSame) {
 
 TEST(EbsdCtfReader, ColumnsAreFoundByName) {
   // Channel 5 lets the user export fewer or reordered columns: the column line says which.
-  const std::string header = kHeader.substr(0, kHeader.find("Phase\tX")) + "X\tY\tPhase\tEuler1\tEuler2\tEuler3\n";
+  const std::string header =
+      kHeader.substr(0, kHeader.find("Phase\tX")) + "X\tY\tPhase\tEuler1\tEuler2\tEuler3\n";
   ScratchDir dir;
   const OrientationMap m =
       read_ctf(dir.file("m.ctf", header + "0\t0\t2\t1\t2\t3\n2.5\t0\t0\t0\t0\t0\n5\t0\t1\t4\t5\t6\n"));
@@ -196,7 +197,8 @@ TEST(EbsdCtfReader, MalformedFilesNameFileLineAndField) {
       {"bad number", head + replace(kData, "123.4000", "12x.4"), "line 18: Euler1"},
       {"bad phase", head + replace(kData, "2\t5.0000\t2.5000", "3\t5.0000\t2.5000"), "line 22: Phase"},
       {"short line", head + replace(kData, "\t0.5\t140\t150\n", "\n"), "line 18: column count"},
-      {"long line", head + replace(kData, "\t0.5\t140\t150\n", "\t0.5\t140\t150\t7\n"), "line 18: column count"},
+      {"long line", head + replace(kData, "\t0.5\t140\t150\n", "\t0.5\t140\t150\t7\n"),
+       "line 18: column count"},
       {"too many points", head + kData + kData.substr(0, kData.find('\n') + 1), "line 23: data"},
       {"bad XCells", replace(head, "XCells\t3", "XCells\tthree"), "line 5: XCells"},
       {"zero XStep", replace(head, "XStep\t2.5", "XStep\t0"), "line 7: XStep"},
@@ -226,8 +228,10 @@ TEST(EbsdCtfReader, LargeMapLoads) {
   m.columns_odd = m.columns_even = 500;
   m.rows = 400;
   m.step_x_um = m.step_y_um = 1.5;
-  m.phases = {EbsdPhase{1, "Quartz", "", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 154},
-              EbsdPhase{2, "Calcite", "", UnitCell{4.99, 4.99, 17.06, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 167}};
+  m.phases = {EbsdPhase{1, "Quartz", "", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal,
+                        "-3m", "7", 154},
+              EbsdPhase{2, "Calcite", "", UnitCell{4.99, 4.99, 17.06, 90, 90, 120}, CrystalSystem::Trigonal,
+                        "-3m", "7", 167}};
   m.allocate_points();
   for (std::size_t i = 0; i < m.size(); ++i) {
     m.phase[i] = i % 7 == 0 ? 0 : static_cast<std::uint8_t>(1 + (i / 500) % 2);
@@ -249,6 +253,24 @@ TEST(EbsdCtfReader, LargeMapLoads) {
     if (m.phase[i] != 0 && std::abs(r.phi2_rad[i] - m.phi2_rad[i]) > kAngleTol) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0u);
+}
+
+}  // namespace
+}  // namespace pmsim
+
+namespace pmsim {
+namespace {
+
+TEST(EbsdReadOrientationMap, PicksTheReaderByExtension) {
+  EXPECT_TRUE(is_orientation_map_path("a/b/Map.CTF"));
+  EXPECT_TRUE(is_orientation_map_path("map.ang"));
+  EXPECT_FALSE(is_orientation_map_path("map.ctf.json"));
+  EXPECT_FALSE(is_orientation_map_path("dir.ctf/map"));
+  ebsd_test::ScratchDir dir;
+  const std::string path = dir.file("map.txt", "Channel Text File\n");
+  const InputError e = ebsd_test::input_error_of([&] { read_orientation_map(path); });
+  EXPECT_EQ(e.file, path);
+  EXPECT_NE(std::string(e.what()).find(".ctf"), std::string::npos) << e.what();
 }
 
 }  // namespace

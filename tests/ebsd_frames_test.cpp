@@ -72,7 +72,8 @@ TEST(EbsdFrames, MonoclinicAndTriclinicFrames) {
     expect_near(R[2], lattice_direction(kAugite, {0, 0, 1}), kTol, "z ∥ c");
     EXPECT_NEAR(std::acos(R[0][0]), radians(105.93 - 90.0), 1e-12);
   }
-  const glm::dmat3 ox = vendor_crystal_frame(EbsdVendor::OxfordChannel5, CrystalSystem::Triclinic, kTriclinic);
+  const glm::dmat3 ox =
+      vendor_crystal_frame(EbsdVendor::OxfordChannel5, CrystalSystem::Triclinic, kTriclinic);
   const glm::dmat3 ed = vendor_crystal_frame(EbsdVendor::EdaxTsl, CrystalSystem::Triclinic, kTriclinic);
   expect_proper_rotation(ox, "Oxford triclinic");
   expect_proper_rotation(ed, "EDAX triclinic");
@@ -104,7 +105,8 @@ TEST(EbsdFrames, HexagonalCAxisAlongTheMapsXBothWays) {
   for (CrystalSystem s : {CrystalSystem::Hexagonal, CrystalSystem::Trigonal}) {
     const glm::dmat3 Rox = vendor_crystal_frame(EbsdVendor::OxfordChannel5, s, kQuartz);
     const glm::dmat3 Red = vendor_crystal_frame(EbsdVendor::EdaxTsl, s, kQuartz);
-    const glm::dmat3 ox = crystal_to_section(EbsdVendor::OxfordChannel5, Rox, {radians(90), radians(90), 0.0});
+    const glm::dmat3 ox =
+        crystal_to_section(EbsdVendor::OxfordChannel5, Rox, {radians(90), radians(90), 0.0});
     const glm::dmat3 ed = crystal_to_section(EbsdVendor::EdaxTsl, Red, {radians(180), radians(90), 0.0});
     expect_near(ox * c_axis, east, kTol, "Oxford c");
     expect_near(ed * c_axis, east, kTol, "EDAX c");

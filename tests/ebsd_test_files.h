@@ -18,8 +18,9 @@ class ScratchDir {
  public:
   ScratchDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("pmsim_ebsd_" + std::to_string(::getpid()) + "_" +
-                                         (info ? std::string(info->test_suite_name()) + "_" + info->name() : "x"));
+    path_ = fs::temp_directory_path() /
+            ("pmsim_ebsd_" + std::to_string(::getpid()) + "_" +
+             (info ? std::string(info->test_suite_name()) + "_" + info->name() : "x"));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

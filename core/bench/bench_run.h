@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/bench/ebsd_load.h"
 #include "core/bench/lens_throughput.h"
 #include "core/bench/process_start.h"
 
@@ -25,6 +26,7 @@ struct BenchOptions {
   std::string images_dir;       // write every image (and the references) as PNG here ("" = none)
   int process_start_runs = 0;   // 8×8 pmsim-render processes timed (0: 21, quick 5; < 0: skip)
   std::string render_binary;    // pmsim-render to time ("": next to this executable)
+  long ebsd_points = 0;         // EBSD map load, points per map (0: 10⁶, quick 10⁵; < 0: skip)
 };
 
 // One JSON row. The first eight keys are the contract of issue 5.
@@ -53,6 +55,7 @@ struct BenchReport {
   std::vector<SceneReferenceInfo> references;
   std::vector<ThroughputResult> throughput;
   std::optional<ProcessStartResult> process_start;
+  std::vector<EbsdLoadResult> ebsd_load;
   std::vector<std::string> notes;
   double total_s = 0.0;
   double load_average = 0.0;  // 1-minute load average at the end of the run (/proc/loadavg)

@@ -26,7 +26,10 @@ struct PhaseDraft {
 
 void finish_phase(const MapText& t, const PhaseDraft& d) {
   const std::string label = "phase " + std::to_string(d.file_id);
-  const char* missing = !d.has_name ? "MaterialName" : !d.has_symmetry ? "Symmetry" : !d.has_lattice ? "LatticeConstants" : nullptr;
+  const char* missing = !d.has_name       ? "MaterialName"
+                        : !d.has_symmetry ? "Symmetry"
+                        : !d.has_lattice  ? "LatticeConstants"
+                                          : nullptr;
   if (missing)
     throw InputError(t.path(), "line " + std::to_string(d.line) + ": " + label + " " + missing, "",
                      std::string("the phase block that starts here has no '# ") + missing + "' line");
@@ -85,7 +88,9 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
     } else if (key == "Symmetry") {
       PhaseDraft& d = current();
       const auto lc = laue_class_from_ang(value);
-      if (!lc) t.fail("Symmetry", value, "not an EDAX symmetry code (1, 2, 20, 21, 22, 3, 32, 4, 42, 6, 62, 23, 43)");
+      if (!lc)
+        t.fail("Symmetry", value,
+               "not an EDAX symmetry code (1, 2, 20, 21, 22, 3, 32, 4, 42, 6, 62, 23, 43)");
       d.phase.laue_group = lc->symbol;
       d.phase.system = lc->system;
       d.phase.vendor_symmetry = std::string(value);
@@ -99,7 +104,8 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
         if (f.empty()) t.fail("LatticeConstants", value, "expected six numbers a b c alpha beta gamma");
         x = t.to_double(f, "LatticeConstants");
       }
-      if (!next_field(r).empty()) t.fail("LatticeConstants", value, "expected six numbers a b c alpha beta gamma");
+      if (!next_field(r).empty())
+        t.fail("LatticeConstants", value, "expected six numbers a b c alpha beta gamma");
       for (int k = 0; k < 3; ++k)
         if (!(v[k] > 0.0)) t.fail("LatticeConstants", value, "lattice lengths must be > 0 Å");
       for (int k = 3; k < 6; ++k)
@@ -128,7 +134,8 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
     // Every other key (Info, NumberFamilies, hklFamilies, ElasticConstants, Categories, the
     // pattern-centre and operator lines, …) says nothing the map needs.
   }
-  if (drafts.empty()) t.fail_header("Phase", "missing: the header describes no phase (no '# Phase' or '# MaterialName')");
+  if (drafts.empty())
+    t.fail_header("Phase", "missing: the header describes no phase (no '# Phase' or '# MaterialName')");
   finish_phase(t, drafts.back());
   if (!xstep) t.fail_header("XSTEP", "missing required header key");
   if (!ystep) t.fail_header("YSTEP", "missing required header key");
@@ -180,7 +187,8 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
     std::string_view rest = line;
     std::string_view f = next_field(rest);
     if (!f.empty()) {
-      if (i == n) t.fail("data", line, "more points than the header's grid holds (" + std::to_string(n) + ")");
+      if (i == n)
+        t.fail("data", line, "more points than the header's grid holds (" + std::to_string(n) + ")");
       int k = 0;
       std::string_view phase_token;
       for (; !f.empty(); f = next_field(rest), ++k) {
@@ -191,19 +199,22 @@ OrientationMap read_ang(const std::string& path, const EbsdReadOptions& options)
         if (k == 7) phase_token = f;
       }
       if (ncols == 0) {
-        if (k < 7) t.fail("column count", line, "an .ang data line has at least 7 columns (phi1 PHI phi2 x y IQ CI)");
+        if (k < 7)
+          t.fail("column count", line, "an .ang data line has at least 7 columns (phi1 PHI phi2 x y IQ CI)");
         if (k == 7 && !single_phase)
           t.fail("column count", line, "7 columns (no phase column) in a file of several phases");
         ncols = k;
       } else if (k != ncols) {
-        t.fail("column count", line, std::to_string(k) + " columns where the first data line has " + std::to_string(ncols));
+        t.fail("column count", line,
+               std::to_string(k) + " columns where the first data line has " + std::to_string(ncols));
       }
       int id = 1;
       if (ncols >= 8) {
         const double p = v[7];
         if (p != std::floor(p) || p < 0.0 || p > 255.0 || id_of_file_id[static_cast<int>(p)] == 0) {
           if (!(p == 0.0 && !single_phase))
-            t.fail("phase", phase_token, "not a phase of the header (0 = non-indexed in a file of several phases)");
+            t.fail("phase", phase_token,
+                   "not a phase of the header (0 = non-indexed in a file of several phases)");
         }
         id = (p == 0.0 && !single_phase) ? 0 : id_of_file_id[static_cast<int>(p)];
       }

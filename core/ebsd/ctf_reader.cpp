@@ -39,7 +39,8 @@ EbsdPhase read_phase_line(const MapText& t, std::string_view line, int id) {
   const std::string_view name = next_tab_field(rest), laue = next_tab_field(rest);
   const std::string_view space_group = next_tab_field(rest);
   const std::string label = "phase " + std::to_string(id);
-  if (laue.empty()) t.fail(label, line, "a phase line needs a;b;c, α;β;γ, the name and the Laue class number");
+  if (laue.empty())
+    t.fail(label, line, "a phase line needs a;b;c, α;β;γ, the name and the Laue class number");
   EbsdPhase p;
   p.id = id;
   const auto abc = three_numbers(t, lengths, label + " lattice a;b;c");
@@ -48,7 +49,8 @@ EbsdPhase read_phase_line(const MapText& t, std::string_view line, int id) {
   for (double l : abc)
     if (!(l > 0.0)) t.fail(label + " lattice a;b;c", lengths, "lattice lengths must be > 0 Å");
   for (double a : ang)
-    if (!(a > 0.0 && a < 180.0)) t.fail(label + " lattice alpha;beta;gamma", angles, "angles must be in (0, 180)°");
+    if (!(a > 0.0 && a < 180.0))
+      t.fail(label + " lattice alpha;beta;gamma", angles, "angles must be in (0, 180)°");
   p.name = std::string(name);
   if (p.name.empty()) t.fail(label + " name", line, "the phase has no name");
   const long laue_number = t.to_integer(laue, label + " Laue class");
@@ -80,15 +82,22 @@ Columns read_column_line(const MapText& t, std::string_view line) {
   Columns c;
   std::string_view rest = line;
   for (std::string_view f = next_field(rest); !f.empty(); f = next_field(rest), ++c.count) {
-    if (f == "Phase") c.phase = c.count;
-    else if (f == "X") c.x = c.count;
-    else if (f == "Y") c.y = c.count;
-    else if (f == "Euler1") c.e1 = c.count;
-    else if (f == "Euler2") c.e2 = c.count;
-    else if (f == "Euler3") c.e3 = c.count;
-    else if (f == "BC") c.bc = c.count;
+    if (f == "Phase")
+      c.phase = c.count;
+    else if (f == "X")
+      c.x = c.count;
+    else if (f == "Y")
+      c.y = c.count;
+    else if (f == "Euler1")
+      c.e1 = c.count;
+    else if (f == "Euler2")
+      c.e2 = c.count;
+    else if (f == "Euler3")
+      c.e3 = c.count;
+    else if (f == "BC")
+      c.bc = c.count;
   }
-  const std::pair<int, const char*> need[] = {{c.phase, "Phase"}, {c.x, "X"},        {c.y, "Y"},
+  const std::pair<int, const char*> need[] = {{c.phase, "Phase"}, {c.x, "X"},       {c.y, "Y"},
                                               {c.e1, "Euler1"},   {c.e2, "Euler2"}, {c.e3, "Euler3"}};
   for (const auto& [col, name] : need)
     if (col < 0) t.fail("column names", line, std::string("the column line has no '") + name + "' column");
@@ -125,16 +134,21 @@ OrientationMap read_ctf(const std::string& path, const EbsdReadOptions& options)
       have_columns = true;
       break;
     }
-    if (key == "XCells") xcells = t.to_integer(value, "XCells");
-    else if (key == "YCells") ycells = t.to_integer(value, "YCells");
-    else if (key == "XStep") xstep = t.to_double(value, "XStep");
-    else if (key == "YStep") ystep = t.to_double(value, "YStep");
+    if (key == "XCells")
+      xcells = t.to_integer(value, "XCells");
+    else if (key == "YCells")
+      ycells = t.to_integer(value, "YCells");
+    else if (key == "XStep")
+      xstep = t.to_double(value, "XStep");
+    else if (key == "YStep")
+      ystep = t.to_double(value, "YStep");
     else if (key == "Phases") {
       const long n = t.to_integer(value, "Phases");
       if (n < 1 || n > 255) t.fail("Phases", value, "the number of phases must be in 1…255");
       for (long k = 1; k <= n; ++k) {
         std::string_view pl;
-        if (!t.next_line(pl)) t.fail("phase " + std::to_string(k), "", "the file ends inside the phase table");
+        if (!t.next_line(pl))
+          t.fail("phase " + std::to_string(k), "", "the file ends inside the phase table");
         m.phases.push_back(read_phase_line(t, pl, static_cast<int>(k)));
       }
       have_phases = true;
@@ -162,8 +176,9 @@ OrientationMap read_ctf(const std::string& path, const EbsdReadOptions& options)
 
   const std::size_t n = m.size();
   const int nphases = static_cast<int>(m.phases.size());
-  static const char* const kField[] = {"column 1", "column 2", "column 3", "column 4", "column 5", "column 6",
-                                       "column 7", "column 8", "column 9", "column 10", "column 11"};
+  static const char* const kField[] = {"column 1", "column 2",  "column 3", "column 4",
+                                       "column 5", "column 6",  "column 7", "column 8",
+                                       "column 9", "column 10", "column 11"};
   std::vector<float> v(static_cast<std::size_t>(cols.count));
   std::string_view phase_token;
   std::size_t i = 0;
@@ -172,22 +187,31 @@ OrientationMap read_ctf(const std::string& path, const EbsdReadOptions& options)
     std::string_view rest = line;
     std::string_view f = next_field(rest);
     if (f.empty()) continue;  // blank lines (a trailing one is common)
-    if (i == n) t.fail("data", line, "more points than XCells × YCells = " + std::to_string(n) + " in the header");
+    if (i == n)
+      t.fail("data", line, "more points than XCells × YCells = " + std::to_string(n) + " in the header");
     int k = 0;
     for (; !f.empty(); f = next_field(rest), ++k) {
-      if (k >= cols.count) t.fail("column count", line, "more columns than the column line names (" + std::to_string(cols.count) + ")");
-      const std::string_view field = k == cols.phase ? "Phase" : k == cols.x ? "X" : k == cols.y ? "Y"
-                                     : k == cols.e1 ? "Euler1" : k == cols.e2 ? "Euler2" : k == cols.e3 ? "Euler3"
-                                     : (k < 11 ? kField[k] : "column");
+      if (k >= cols.count)
+        t.fail("column count", line,
+               "more columns than the column line names (" + std::to_string(cols.count) + ")");
+      const std::string_view field = k == cols.phase ? "Phase"
+                                     : k == cols.x   ? "X"
+                                     : k == cols.y   ? "Y"
+                                     : k == cols.e1  ? "Euler1"
+                                     : k == cols.e2  ? "Euler2"
+                                     : k == cols.e3  ? "Euler3"
+                                                     : (k < 11 ? kField[k] : "column");
       if (!parse_number(f, v[k]) || !std::isfinite(v[k])) t.fail(field, f, "not a number");
       if (k == cols.phase) phase_token = f;
     }
     if (k != cols.count)
-      t.fail("column count", line, std::to_string(k) + " columns where the column line names " + std::to_string(cols.count));
+      t.fail("column count", line,
+             std::to_string(k) + " columns where the column line names " + std::to_string(cols.count));
     const float ph = v[cols.phase];
     if (ph != std::floor(ph) || ph < 0.0f || ph > static_cast<float>(nphases))
-      t.fail("Phase", phase_token,
-             "the phase must be 0 (non-indexed) or one of the header's " + std::to_string(nphases) + " phases");
+      t.fail(
+          "Phase", phase_token,
+          "the phase must be 0 (non-indexed) or one of the header's " + std::to_string(nphases) + " phases");
     if (i == 0) {
       m.origin_x_um = v[cols.x];
       m.origin_y_um = v[cols.y];

@@ -26,9 +26,12 @@ glm::dmat3 vendor_crystal_frame(EbsdVendor vendor, CrystalSystem system, const U
   if (vendor == EbsdVendor::OxfordChannel5) return frame_from_axes(cell, AxisX::AStar, AxisZ::C);
   switch (system) {
     case CrystalSystem::Hexagonal:
-    case CrystalSystem::Trigonal: return frame_from_axes(cell, AxisX::A, AxisZ::C);
-    case CrystalSystem::Monoclinic: return frame_from_axes(cell, AxisX::AStar, AxisZ::C);
-    default: return frame_from_axes(cell, AxisX::A, AxisZ::CStar);
+    case CrystalSystem::Trigonal:
+      return frame_from_axes(cell, AxisX::A, AxisZ::C);
+    case CrystalSystem::Monoclinic:
+      return frame_from_axes(cell, AxisX::AStar, AxisZ::C);
+    default:
+      return frame_from_axes(cell, AxisX::A, AxisZ::CStar);
   }
 }
 

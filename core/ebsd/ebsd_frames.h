@@ -52,7 +52,8 @@ glm::dmat3 vendor_specimen_frame(EbsdVendor vendor);
 // pmsim's crystal-to-section rotation (columns: pmsim's crystal axes e1, e2, e3 in the section
 // frame) of a point with Bunge angles `e` as the vendor wrote them:
 //   S · crystal_to_sample_from_bunge(e) · Rᵀ,  S = vendor_specimen_frame, R = vendor_crystal_frame.
-glm::dmat3 crystal_to_section(EbsdVendor vendor, const glm::dmat3& vendor_crystal_frame_R, const EulerBunge& e);
+glm::dmat3 crystal_to_section(EbsdVendor vendor, const glm::dmat3& vendor_crystal_frame_R,
+                              const EulerBunge& e);
 
 // Where point i lies on pmsim's section, in mm: the origin at the centre of the map's extent, x
 // along the map's x, y against the map's y (the first row at the top: north).

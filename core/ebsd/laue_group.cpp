@@ -5,18 +5,30 @@ namespace pmsim {
 std::optional<LaueClass> laue_class_from_ctf(long n) {
   using S = CrystalSystem;
   switch (n) {
-    case 1: return LaueClass{"-1", S::Triclinic};
-    case 2: return LaueClass{"2/m", S::Monoclinic};
-    case 3: return LaueClass{"mmm", S::Orthorhombic};
-    case 4: return LaueClass{"4/m", S::Tetragonal};
-    case 5: return LaueClass{"4/mmm", S::Tetragonal};
-    case 6: return LaueClass{"-3", S::Trigonal};
-    case 7: return LaueClass{"-3m", S::Trigonal};
-    case 8: return LaueClass{"6/m", S::Hexagonal};
-    case 9: return LaueClass{"6/mmm", S::Hexagonal};
-    case 10: return LaueClass{"m-3", S::Cubic};
-    case 11: return LaueClass{"m-3m", S::Cubic};
-    default: return std::nullopt;
+    case 1:
+      return LaueClass{"-1", S::Triclinic};
+    case 2:
+      return LaueClass{"2/m", S::Monoclinic};
+    case 3:
+      return LaueClass{"mmm", S::Orthorhombic};
+    case 4:
+      return LaueClass{"4/m", S::Tetragonal};
+    case 5:
+      return LaueClass{"4/mmm", S::Tetragonal};
+    case 6:
+      return LaueClass{"-3", S::Trigonal};
+    case 7:
+      return LaueClass{"-3m", S::Trigonal};
+    case 8:
+      return LaueClass{"6/m", S::Hexagonal};
+    case 9:
+      return LaueClass{"6/mmm", S::Hexagonal};
+    case 10:
+      return LaueClass{"m-3", S::Cubic};
+    case 11:
+      return LaueClass{"m-3m", S::Cubic};
+    default:
+      return std::nullopt;
   }
 }
 

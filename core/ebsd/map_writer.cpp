@@ -48,15 +48,16 @@ class Out {
 };
 
 int ctf_laue_number(const std::string& symbol) {
-  static const char* const kLaue[] = {"-1", "2/m", "mmm", "4/m", "4/mmm", "-3", "-3m", "6/m", "6/mmm", "m-3", "m-3m"};
+  static const char* const kLaue[] = {"-1",  "2/m", "mmm",   "4/m", "4/mmm", "-3",
+                                      "-3m", "6/m", "6/mmm", "m-3", "m-3m"};
   for (int k = 0; k < 11; ++k)
     if (symbol == kLaue[k]) return k + 1;
   return 1;
 }
 
 const char* ang_symmetry_code(const std::string& symbol) {
-  static const char* const kLaue[][2] = {{"-1", "1"},   {"2/m", "20"}, {"mmm", "22"},  {"4/m", "4"},
-                                         {"4/mmm", "42"}, {"-3", "3"},   {"-3m", "32"},  {"6/m", "6"},
+  static const char* const kLaue[][2] = {{"-1", "1"},     {"2/m", "20"}, {"mmm", "22"}, {"4/m", "4"},
+                                         {"4/mmm", "42"}, {"-3", "3"},   {"-3m", "32"}, {"6/m", "6"},
                                          {"6/mmm", "62"}, {"m-3", "23"}, {"m-3m", "43"}};
   for (const auto& e : kLaue)
     if (symbol == e[0]) return e[1];
@@ -93,7 +94,8 @@ void write_ctf(const OrientationMap& m, const std::string& path) {
     o.num(static_cast<float>(m.origin_y_um + m.y_um(i))) << (ix ? "\t8\t0\t" : "\t0\t3\t");
     o.num(ix ? static_cast<float>(degrees(m.phi1_rad[i])) : 0.0f) << "\t";
     o.num(ix ? static_cast<float>(degrees(m.Phi_rad[i])) : 0.0f) << "\t";
-    o.num(ix ? static_cast<float>(degrees(m.phi2_rad[i])) : 0.0f) << (ix ? "\t0.5\t150\t160\r\n" : "\t0\t20\t30\r\n");
+    o.num(ix ? static_cast<float>(degrees(m.phi2_rad[i])) : 0.0f)
+        << (ix ? "\t0.5\t150\t160\r\n" : "\t0\t20\t30\r\n");
   }
   o.close();
 }
@@ -103,8 +105,9 @@ void write_ang(const OrientationMap& m, const std::string& path) {
   o << "# TEM_PIXperUM          1.000000\n";
   for (const EbsdPhase& p : m.phases) {
     o << "#\n# Phase ";
-    o.num(p.id) << "\n# MaterialName  \t" << p.name << "\n# Formula     \t" << p.formula << "\n# Info\n# Symmetry    \t"
-                << ang_symmetry_code(p.laue_group) << "\n# LatticeConstants\t";
+    o.num(p.id) << "\n# MaterialName  \t" << p.name << "\n# Formula     \t" << p.formula
+                << "\n# Info\n# Symmetry    \t" << ang_symmetry_code(p.laue_group)
+                << "\n# LatticeConstants\t";
     o.num(p.cell.a_A) << " ";
     o.num(p.cell.b_A) << " ";
     o.num(p.cell.c_A) << " ";

@@ -27,14 +27,14 @@ const char* ebsd_vendor_name(EbsdVendor v);  // "Oxford Instruments HKL Channel 
 enum class MapGrid { Square, Hexagonal };
 
 struct EbsdPhase {
-  int id = 0;                // the phase number points carry (1…N, in header order)
-  std::string name;          // as the file spells it (ctf phase name, ang MaterialName)
-  std::string formula;       // ang "# Formula" ("" when absent or ctf)
-  UnitCell cell;             // lattice parameters, Å and degrees
+  int id = 0;           // the phase number points carry (1…N, in header order)
+  std::string name;     // as the file spells it (ctf phase name, ang MaterialName)
+  std::string formula;  // ang "# Formula" ("" when absent or ctf)
+  UnitCell cell;        // lattice parameters, Å and degrees
   CrystalSystem system = CrystalSystem::Triclinic;
-  std::string laue_group;    // Hermann–Mauguin symbol of the Laue class ("6/mmm", "m-3m")
+  std::string laue_group;       // Hermann–Mauguin symbol of the Laue class ("6/mmm", "m-3m")
   std::string vendor_symmetry;  // the code as written (ctf Laue number "9", ang Symmetry "62")
-  int space_group = 0;       // International Tables number, 0 when the file does not give it
+  int space_group = 0;          // International Tables number, 0 when the file does not give it
 };
 
 // What the file calls its quality column, kept when EbsdReadOptions::keep_quality is set.
@@ -53,7 +53,7 @@ struct OrientationMap {
   std::vector<EbsdPhase> phases;  // phases[k] has id k + 1
 
   // Per point, in file order (row by row, the first row at the top of the vendor's display).
-  std::vector<std::uint8_t> phase;  // 0 = non-indexed, else an EbsdPhase::id
+  std::vector<std::uint8_t> phase;                 // 0 = non-indexed, else an EbsdPhase::id
   std::vector<float> phi1_rad, Phi_rad, phi2_rad;  // Bunge, the vendor's frames
   MapQuality quality_kind = MapQuality::None;
   std::vector<float> quality;  // band contrast (ctf BC) or confidence index (ang CI); empty unless kept
@@ -70,9 +70,7 @@ struct OrientationMap {
   double y_um(std::size_t i) const;
   bool indexed(std::size_t i) const { return phase[i] != 0; }
   EulerBunge euler(std::size_t i) const { return {phi1_rad[i], Phi_rad[i], phi2_rad[i]}; }
-  const EbsdPhase* phase_of(std::size_t i) const {
-    return phase[i] == 0 ? nullptr : &phases[phase[i] - 1];
-  }
+  const EbsdPhase* phase_of(std::size_t i) const { return phase[i] == 0 ? nullptr : &phases[phase[i] - 1]; }
   // Extent of the grid's points (first to last point centre) in x and y, µm.
   double width_um() const;
   double height_um() const { return rows > 1 ? (rows - 1) * step_y_um : 0.0; }

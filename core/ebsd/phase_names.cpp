@@ -50,7 +50,8 @@ std::string normalized(std::string_view s) {
 }
 
 std::string without_qualifiers(std::string s) {
-  static const char* const kSuffixes[] = {"-new", " new", "-low", " low", "-high", " high", " alpha", "-alpha"};
+  static const char* const kSuffixes[] = {"-new",  " new",  "-low",   " low",
+                                          "-high", " high", " alpha", "-alpha"};
   static const char* const kPrefixes[] = {"low ", "high ", "alpha-", "alpha "};
   for (bool changed = true; changed;) {
     changed = false;
@@ -92,7 +93,8 @@ std::optional<std::string> resolve_automatically(std::string_view name, const st
       if (!is_library_mineral(base_name(it->second)))
         throw InputError(file, "sample.phases", shown_name,
                          "the phase-name table (assets/ebsd/phase_names.json) maps '" + candidate + "' to '" +
-                             it->second + "', which the mineral library lacks; map the phase explicitly with "
+                             it->second +
+                             "', which the mineral library lacks; map the phase explicitly with "
                              "sample.phases");
       return it->second;
     }
@@ -109,8 +111,8 @@ std::string how_to_map(const std::string& name) {
 
 }  // namespace
 
-std::string map_phase_name(const std::string& name_in_file, const std::map<std::string, std::string>& explicit_map,
-                           const std::string& file) {
+std::string map_phase_name(const std::string& name_in_file,
+                           const std::map<std::string, std::string>& explicit_map, const std::string& file) {
   auto it = explicit_map.find(name_in_file);
   if (it == explicit_map.end()) {
     const std::string want = normalized(name_in_file);
@@ -132,8 +134,9 @@ std::string map_phase_name(const std::string& name_in_file, const std::map<std::
                          "(olivine:Fo90), \"isotropic\" or \"none\"");
   }
   if (auto r = resolve_automatically(name_in_file, file, name_in_file)) return *r;
-  throw InputError(file, "sample.phases", name_in_file,
-                   "the map's phase '" + name_in_file + "' matches no library mineral; " + how_to_map(name_in_file));
+  throw InputError(
+      file, "sample.phases", name_in_file,
+      "the map's phase '" + name_in_file + "' matches no library mineral; " + how_to_map(name_in_file));
 }
 
 }  // namespace pmsim

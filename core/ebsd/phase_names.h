@@ -21,7 +21,8 @@
 namespace pmsim {
 
 // "isotropic", "none", a library mineral name (lower case) or an explicit map's value as written.
-std::string map_phase_name(const std::string& name_in_file, const std::map<std::string, std::string>& explicit_map,
+std::string map_phase_name(const std::string& name_in_file,
+                           const std::map<std::string, std::string>& explicit_map,
                            const std::string& file = "");
 
 }  // namespace pmsim

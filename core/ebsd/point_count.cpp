@@ -16,8 +16,8 @@ void finish_point_count(OrientationMap& m, std::size_t held, const char* header_
   m.points_in_file = held;
   if (held < m.size())
     m.warnings.push_back(m.file + ": the header promises " + std::to_string(m.size()) + " points (" +
-                         header_terms + ") but the file holds " + std::to_string(held) +
-                         "; the missing " + std::to_string(m.size() - held) + " points are non-indexed");
+                         header_terms + ") but the file holds " + std::to_string(held) + "; the missing " +
+                         std::to_string(m.size() - held) + " points are non-indexed");
 }
 
 }  // namespace pmsim
