@@ -190,3 +190,21 @@ TEST(MineralLibrary, MonoclinicChainSilicateExtinctionAnglesInTheirPublishedRang
         << k.name;
   }
 }
+
+// Pleochroism tied to X, Y, Z (Nesse 2012): staurolite's Z golden yellow (absorbs blue) against
+// a colourless X; glaucophane's Z blue (absorbs red) against a colourless X; chlorite's
+// Y = Z greener (absorb red more than X). Ordering checks: the tables are shaped, not measured,
+// so only which axis absorbs more at which end of the spectrum is a published fact.
+TEST(MineralLibrary, PleochroismFollowsThePublishedAxisColours) {
+  const glm::dvec3 st_blue = find_mineral("staurolite").principal_absorption_per_um(450);
+  EXPECT_GT(st_blue.z, st_blue.y);
+  EXPECT_GT(st_blue.y, st_blue.x);
+  const Crystal& gln = find_mineral("glaucophane");
+  EXPECT_GT(gln.principal_absorption_per_um(650).z, gln.principal_absorption_per_um(650).x);
+  EXPECT_GT(gln.principal_absorption_per_um(650).z, gln.principal_absorption_per_um(450).z);  // blue
+  const glm::dvec3 chl_red = find_mineral("chlorite").principal_absorption_per_um(650);
+  EXPECT_GT(chl_red.y, chl_red.x);
+  EXPECT_EQ(chl_red.y, chl_red.z);
+  for (const char* name : {"staurolite", "glaucophane", "aegirine", "actinolite", "chlorite", "phlogopite"})
+    EXPECT_TRUE(find_mineral(name).absorbing()) << name;
+}
