@@ -320,9 +320,9 @@ const Library& library() {
     const auto alias_file = dir / kAliasFile;
     if (std::filesystem::is_regular_file(alias_file, ec)) {
       read_aliases(alias_file.string(), l);
-      for (const auto& [a, target] : l.aliases) {
+      for (auto& [a, target] : l.aliases) {
         try {
-          canonical_in(l, target);
+          target = canonical_in(l, target);  // stored in its one spelling ("olivine:Fo100")
         } catch (const InputError& e) {
           throw InputError(alias_file.string(), "groups", target, "alias '" + a + "': " + e.reason);
         }
