@@ -10,6 +10,7 @@
 // the optic axis c; isotropic ones have all three equal.
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -100,8 +101,20 @@ class Crystal {
 };
 
 // The mineral library (assets/minerals/*.json, or $PMSIM_ASSETS/minerals), loaded once.
-// Case-insensitive; throws InputError naming an unknown name (no key: the caller knows it).
+// A mineral name is, case-insensitively and wherever one is written (scene files, --set,
+// section grains): a file's name ("enstatite"), an alias from assets/minerals/aliases.json
+// ("opx", "garnet"), or a composition of a solid-solution series, "plagioclase:An35",
+// "olivine:Fo88" (integer or decimal mol %, 0..100; "olivine:Fa12" means Fo88). The plain series
+// name ("plagioclase") keeps the file's own indices, its default composition.
+// canonical_mineral_name: the one spelling of a name, "enstatite" or "plagioclase:An35" (the
+// component as the file spells it, the shortest decimal); InputError (value = the name, no key:
+// the caller knows it) for an unknown mineral, listing the known ones, or a bad composition.
+std::string canonical_mineral_name(std::string_view name);
+// The crystal of a name as above; name() is the canonical name. The reference stays valid for
+// the process (composition crystals are made once and kept). Throws as canonical_mineral_name.
 const Crystal& find_mineral(std::string_view name);
+// (alias, target) pairs, sorted by alias, lower case; targets are canonical names.
+std::vector<std::pair<std::string, std::string>> mineral_aliases();
 // Parses one mineral file; throws InputError naming the file, key and value on bad input.
 Crystal load_mineral_file(const std::string& path);
 std::vector<std::string> mineral_names();  // sorted, lower case

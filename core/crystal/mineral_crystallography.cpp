@@ -58,6 +58,16 @@ OpticalOrientation orientation_at(const JsonReader& o) {
     r.from_a = from == "a";
     r.angle_deg = in.require<double>("angle_deg", Range::closed(0, 90));
     r.side = in.require_enum("side", kSides);
+  } else if (o.has("normal_to")) {
+    o.refuse_unknown_keys({"normal_to", "axis", "in_plane", "source"});
+    r.kind = OpticalOrientation::Kind::Triclinic;
+    r.normal_plane = plane_at(o, "normal_to");
+    r.normal_axis = o.require_enum("axis", kAxes);
+    const JsonReader in = o.object("in_plane");
+    in.refuse_unknown_keys({"axis", "from", "angle_deg"});
+    r.inclined = in.require_enum("axis", kAxes);
+    r.reference_direction = direction_at(in, "from");
+    r.angle_deg = in.require<double>("angle_deg", Range::open_closed(-90, 90));
   } else {
     o.refuse_unknown_keys({"a", "b", "c", "source"});
     r.kind = OpticalOrientation::Kind::Orthorhombic;
@@ -98,7 +108,7 @@ std::optional<MineralCrystallography> read_mineral_crystallography(const JsonRea
     if (symmetry == CrystalSymmetry::Isotropic)
       o->fail("", "an isotropic crystal has no optical orientation");
     if (uni != (symmetry == CrystalSymmetry::Uniaxial))
-      o->fail("", uni ? "a biaxial crystal needs the orthorhombic or monoclinic form"
+      o->fail("", uni ? "a biaxial crystal needs the orthorhombic, monoclinic or triclinic form"
                       : "a uniaxial crystal takes {\"optic_axis\": \"c\"}");
     m.indicatrix_axes = o->checked("", o->node(), [&](const nlohmann::json&) {
       return indicatrix_axes(m.system, m.cell, *m.orientation);

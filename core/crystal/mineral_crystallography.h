@@ -12,6 +12,8 @@
 //       {"a": "X|Y|Z", "b": …, "c": …, "source"}                        (orthorhombic)
 //       {"b": "X|Y|Z", "inclined": {"axis": "X|Y|Z", "from": "c|a", "angle_deg": θ,
 //        "side": "obtuse_beta|acute_beta"}, "source"}                   (monoclinic, b unique)
+//       {"normal_to": "(100)", "axis": "X", "in_plane": {"axis": "Z", "from": "[001]",
+//        "angle_deg": θ}, "source"}                                     (triclinic)
 //   "cleavage": [{"plane": "(110)", "quality": "perfect|very_good|good|distinct|fair|imperfect|
 //                 poor|parting", "source"}, …]  — each symmetry-equivalent plane that shows in thin
 //                 section listed on its own ((110) and (1-10)),
@@ -67,12 +69,14 @@ struct MineralCrystallography {
 
 // Reads the keys above from a mineral file's root object; nullopt when it has none of them.
 // `symmetry` is the file's optical symmetry: a uniaxial crystal takes the uniaxial orientation,
-// a biaxial one an orthorhombic or monoclinic one. Throws InputError naming file, key and value.
+// a biaxial one an orthorhombic, monoclinic or triclinic one; an isotropic one none (its cell
+// and cleavage are still read: garnet, halite). Throws InputError naming file, key and value.
 std::optional<MineralCrystallography> read_mineral_crystallography(const JsonReader& root,
                                                                    CrystalSymmetry symmetry);
 
-// The library's data for a mineral (case-insensitive name); nullptr when its file has none.
-// Throws InputError for an unknown mineral, as find_mineral does.
+// The library's data for a mineral (any name find_mineral takes: aliases, compositions, which
+// share their series' file data); nullptr when its file has none. The pointer stays valid for the
+// process. Throws InputError for an unknown mineral, as find_mineral does.
 const MineralCrystallography* find_mineral_crystallography(std::string_view name);
 
 // load_mineral_file (crystal.h) that also returns the file's crystallography.

@@ -1,5 +1,6 @@
 // The mineral library: assets/minerals/*.json parsed into Crystals, loaded once, looked up by
-// case-insensitive name.
+// case-insensitive name, alias (assets/minerals/aliases.json) or composition ("plagioclase:An35",
+// the series of the file interpolated; the plain name keeps the file's own "indices").
 //
 // File format (every number's origin is named by the "source" keys):
 //   {"name": "quartz", "symmetry": "uniaxial" | "biaxial" | "isotropic", "source": "...",
@@ -11,6 +12,7 @@
 //    "rotatory_power": {"source": "...", "A_deg_um2_per_mm": A, "lambda0_um": l0,
 //        "handedness": "right" | "left"},
 //    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used),
+//    "series": a solid solution's indices against composition (core/crystal/mineral_series.h),
 //    crystallography keys: see core/crystal/mineral_crystallography.h}
 #include <algorithm>
 #include <cctype>
@@ -19,12 +21,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 
 #include <nlohmann/json.hpp>
 
 #include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
+#include "core/crystal/mineral_series.h"
 #include "core/base/json_reader.h"
 #include "core/base/asset_locator.h"
 #include "core/base/asset_names.h"
@@ -117,16 +121,28 @@ struct Reader {
 
 }  // namespace
 
-Crystal load_mineral_file(const std::string& path) { return load_mineral_file(path, nullptr); }
+namespace {
+Crystal load_mineral(const std::string& path, std::optional<MineralCrystallography>* crystallography,
+                     std::optional<MineralSeries>* series);
+}  // namespace
+
+Crystal load_mineral_file(const std::string& path) { return load_mineral(path, nullptr, nullptr); }
 
 Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystallography>* crystallography) {
+  return load_mineral(path, crystallography, nullptr);
+}
+
+namespace {
+
+Crystal load_mineral(const std::string& path, std::optional<MineralCrystallography>* crystallography,
+                     std::optional<MineralSeries>* series) {
   const json j = read_json_file(path, "mineral file");
   const Reader r{path};
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
   r.only_keys(j, "",
               {"name", "symmetry", "source", "indices", "absorption", "rotatory_power", "optic_angle_2vz_deg",
                "pleochroism", "note", "description", "crystal_system", "unit_cell", "optical_orientation",
-               "cleavage", "habit", "twins"});
+               "cleavage", "habit", "twins", "series"});
   const json& name_v = r.need(j, "name", "name");
   if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
   const json& src_v = r.need(j, "source", "source");
@@ -226,19 +242,56 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
     c.set_rotatory_power(rd);
   }
   // Read (and so checked) whether or not the caller keeps it: a bad block fails the load.
-  auto cr = read_mineral_crystallography(JsonReader(j, path), c.symmetry());
+  const JsonReader root(j, path);
+  auto cr = read_mineral_crystallography(root, c.symmetry());
   if (crystallography) *crystallography = std::move(cr);
+  if (const auto se = root.optional_object("series")) {
+    if (c.symmetry() != CrystalSymmetry::Biaxial) se->fail("", "a series tabulates nalpha, nbeta, ngamma: biaxial only");
+    MineralSeries s = read_mineral_series(*se);
+    if (series) *series = std::move(s);
+  }
   return c;
 }
 
-namespace {
-
 std::filesystem::path mineral_dir() { return std::filesystem::path(asset_dir()) / "minerals"; }
+
+// The alias table is data, not a mineral: it lives beside the mineral files under this name.
+constexpr const char* kAliasFile = "aliases.json";
 
 struct Library {
   std::map<std::string, Crystal> by_name;  // lower-case name → crystal (node-stable references)
   std::map<std::string, MineralCrystallography> crystallography;  // minerals whose file has it
+  std::map<std::string, MineralSeries> series;                    // solid solutions
+  std::map<std::string, std::string> aliases;                     // lower-case alias → target
 };
+
+// Reads assets/minerals/aliases.json: {"source": "...", "groups": [{"target": "enstatite",
+// "aliases": ["opx", ...], "source": "why these names mean this mineral"}, ...]}. Targets are
+// checked once the whole library is loaded (they may be compositions such as "olivine:Fo100").
+void read_aliases(const std::string& path, Library& l) {
+  const nlohmann::json j = read_json_file(path, "mineral alias file");
+  const JsonReader r(j, path);
+  r.refuse_unknown_keys({"source", "groups", "note"});
+  if (r.require<std::string>("source").empty()) r.fail("source", "the alias file cites its sources");
+  for (const JsonReader& g : r.objects("groups", 1)) {
+    g.refuse_unknown_keys({"target", "aliases", "source"});
+    const std::string target = lower_case(g.require<std::string>("target"));
+    if (g.require<std::string>("source").empty()) g.fail("source", "every alias group says why");
+    const nlohmann::json& names = *g.find("aliases");
+    if (!names.is_array() || names.empty()) g.fail("aliases", "expected a non-empty array of names");
+    for (size_t i = 0; i < names.size(); ++i) {
+      const std::string key = "aliases[" + std::to_string(i) + "]";
+      const std::string a = lower_case(g.checked(key, names[i], [](const nlohmann::json& v) {
+        return string_value(v);
+      }));
+      if (a.empty() || a.find(':') != std::string::npos) g.fail(key, names[i], "an alias is a plain name");
+      if (l.by_name.count(a)) g.fail(key, names[i], "is the name of a mineral file, not an alias");
+      if (!l.aliases.emplace(a, target).second) g.fail(key, names[i], "is an alias twice");
+    }
+  }
+}
+
+std::string canonical_in(const Library& l, std::string_view name);
 
 const Library& library() {
   static const Library lib = [] {
@@ -249,46 +302,176 @@ const Library& library() {
       throw InputError(dir.string(), "", "", "mineral directory not found (set PMSIM_ASSETS)");
     std::vector<std::filesystem::path> files;
     for (const auto& e : std::filesystem::directory_iterator(dir))
-      if (e.path().extension() == ".json") files.push_back(e.path());
+      if (e.path().extension() == ".json" && e.path().filename() != kAliasFile) files.push_back(e.path());
     std::sort(files.begin(), files.end());
     AssetNames defined("mineral");
     for (const auto& f : files) {
       std::optional<MineralCrystallography> cr;
-      Crystal c = load_mineral_file(f.string(), &cr);
+      std::optional<MineralSeries> se;
+      Crystal c = load_mineral(f.string(), &cr, &se);
       defined.add(c.name(), f.string());
       const std::string key = lower_case(c.name());
+      if (key.find(':') != std::string::npos)
+        throw InputError(f.string(), "name", c.name(), "':' separates a mineral from its composition");
       l.by_name.emplace(key, std::move(c));
       if (cr) l.crystallography.emplace(key, std::move(*cr));
+      if (se) l.series.emplace(key, std::move(*se));
+    }
+    const auto alias_file = dir / kAliasFile;
+    if (std::filesystem::is_regular_file(alias_file, ec)) {
+      read_aliases(alias_file.string(), l);
+      for (auto& [a, target] : l.aliases) {
+        try {
+          target = canonical_in(l, target);  // stored in its one spelling ("olivine:Fo100")
+        } catch (const InputError& e) {
+          throw InputError(alias_file.string(), "groups", target, "alias '" + a + "': " + e.reason);
+        }
+      }
     }
     return l;
   }();
   return lib;
 }
 
+[[noreturn]] void unknown_mineral(const Library& l, std::string_view name) {
+  std::string known;
+  for (const auto& [k, v] : l.by_name) known += (known.empty() ? "" : ", ") + k;
+  throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
+}
+
+std::string trimmed(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return std::string(s);
+}
+
+// "An35", "an 35.5", "Fa10" → the component's mol % (Fa10 → Fo90), or InputError naming `name`.
+double composition_of(const MineralSeries& s, const std::string& base, std::string_view text,
+                      std::string_view name) {
+  const std::string t = lower_case(trimmed(text));
+  size_t i = 0;
+  while (i < t.size() && std::isalpha(static_cast<unsigned char>(t[i]))) ++i;
+  const std::string comp = t.substr(0, i);
+  const std::string number = trimmed(std::string_view(t).substr(i));
+  const bool complement = !s.complement.empty() && comp == lower_case(s.complement);
+  const std::string example = base + ":" + s.component + "35";
+  if (comp != lower_case(s.component) && !complement)
+    throw InputError("", "", std::string(name),
+                     "a " + base + " composition is written " + example + " (mol % " + s.component +
+                         (s.complement.empty() ? "" : ", or " + s.complement) + ")");
+  // Plain decimal digits only: strtod would also take "1e1", "inf" and hexadecimal.
+  bool ok = !number.empty() && number.front() != '.' && number.back() != '.';
+  int dots = 0;
+  for (char c : number) {
+    dots += c == '.';
+    ok &= (std::isdigit(static_cast<unsigned char>(c)) || c == '.');
+  }
+  if (!ok || dots > 1)
+    throw InputError("", "", std::string(name), "the composition needs a number of mol %, e.g. " + example);
+  const double x = std::strtod(number.c_str(), nullptr);
+  if (!(x >= 0.0 && x <= 100.0))
+    throw InputError("", "", std::string(name),
+                     "composition " + (complement ? s.complement : s.component) + number +
+                         " is outside 0..100 mol %");
+  // Rounded to 1e-6 mol % so that Fa12.3 names the same crystal as Fo87.7 (100 − 12.3 is not
+  // exact in binary).
+  return std::round((complement ? 100.0 - x : x) * 1e6) / 1e6;
+}
+
+std::string canonical_in(const Library& l, std::string_view name) {
+  const std::string n = lower_case(trimmed(name));
+  const size_t colon = n.find(':');
+  std::string base = trimmed(std::string_view(n).substr(0, colon));
+  std::string composition_text;
+  if (const auto a = l.aliases.find(base); a != l.aliases.end()) {
+    const std::string& target = a->second;
+    const size_t tc = target.find(':');
+    if (tc != std::string::npos) {
+      // An alias that is itself a composition ("forsterite" → olivine:Fo100) takes none.
+      if (colon != std::string::npos)
+        throw InputError("", "", std::string(name),
+                         "'" + base + "' already names a composition (" + target + ")");
+      base = target.substr(0, tc);
+      composition_text = target.substr(tc + 1);
+    } else {
+      base = target;
+    }
+  }
+  if (colon != std::string::npos) composition_text = n.substr(colon + 1);
+  if (!l.by_name.count(base)) unknown_mineral(l, name);
+  if (colon == std::string::npos && composition_text.empty()) return base;
+  const auto s = l.series.find(base);
+  if (s == l.series.end())
+    throw InputError("", "", std::string(name), "'" + base + "' is not a solid-solution series (" +
+                                                     [&] {
+                                                       std::string all;
+                                                       for (const auto& [k, v] : l.series)
+                                                         all += (all.empty() ? "" : ", ") + k;
+                                                       return all;
+                                                     }() +
+                                                     " are)");
+  const double x = composition_of(s->second, base, composition_text, name);
+  return base + ":" + s->second.component + number_text(x);
+}
+
+// Crystals of compositions, made on first use and kept for the process (references stay valid:
+// std::map nodes do not move). Guarded: renders look minerals up from several threads.
+struct CompositionCache {
+  std::mutex mutex;
+  std::map<std::string, Crystal> crystals;
+};
+CompositionCache& composition_cache() {
+  static CompositionCache c;
+  return c;
+}
+
 }  // namespace
+
+std::string canonical_mineral_name(std::string_view name) { return canonical_in(library(), name); }
 
 const Crystal& find_mineral(std::string_view name) {
   const Library& lib = library();
-  const auto it = lib.by_name.find(lower_case(name));
-  if (it == lib.by_name.end()) {
-    std::string known;
-    for (const auto& [k, v] : lib.by_name) known += (known.empty() ? "" : ", ") + k;
-    throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
-  }
-  return it->second;
+  const std::string key = canonical_in(lib, name);
+  if (const auto it = lib.by_name.find(key); it != lib.by_name.end()) return it->second;
+  CompositionCache& cache = composition_cache();
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  if (const auto it = cache.crystals.find(key); it != cache.crystals.end()) return it->second;
+  const size_t colon = key.find(':');
+  const std::string base = key.substr(0, colon);
+  const MineralSeries& s = lib.series.at(base);
+  const double x = std::strtod(key.c_str() + colon + 1 + s.component.size(), nullptr);
+  const glm::dvec3 n = s.indices_at(x);
+  IndexDispersion d[3];
+  for (int k = 0; k < 3; ++k) d[k].A = n[k];
+  Crystal c = Crystal::make(key, CrystalSymmetry::Biaxial, d[0], d[1], d[2],
+                            s.source + " Indices interpolated linearly in composition at " + key + ".");
+  return cache.crystals.emplace(key, std::move(c)).first->second;
 }
 
 const MineralCrystallography* find_mineral_crystallography(std::string_view name) {
-  find_mineral(name);  // an unknown name throws as there
   const Library& lib = library();
-  const auto it = lib.crystallography.find(lower_case(name));
+  const std::string key = canonical_in(lib, name);  // an unknown name throws as find_mineral does
+  // A composition shares its series' lattice and orientation data (the file's blocks).
+  const auto it = lib.crystallography.find(key.substr(0, key.find(':')));
   return it == lib.crystallography.end() ? nullptr : &it->second;
+}
+
+const MineralSeries* find_mineral_series(std::string_view name) {
+  const Library& lib = library();
+  const std::string key = canonical_in(lib, name);
+  const auto it = lib.series.find(key.substr(0, key.find(':')));
+  return it == lib.series.end() ? nullptr : &it->second;
 }
 
 std::vector<std::string> mineral_names() {
   std::vector<std::string> names;
   for (const auto& [k, v] : library().by_name) names.push_back(k);
   return names;
+}
+
+std::vector<std::pair<std::string, std::string>> mineral_aliases() {
+  const auto& a = library().aliases;
+  return {a.begin(), a.end()};
 }
 
 }  // namespace pmsim

@@ -72,6 +72,27 @@ glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const Opt
       v[third] = glm::normalize(glm::cross(b, inclined));
       return frame(v);
     }
+    case OpticalOrientation::Kind::Triclinic: {
+      if (system != CrystalSystem::Triclinic)
+        throw BadValue{std::string("a plane-normal orientation is for triclinic crystals, not ") +
+                       crystal_system_name(system)};
+      if (o.inclined == o.normal_axis) throw BadValue{"the axis in the plane cannot also be its normal"};
+      if (!(std::isfinite(o.angle_deg) && o.angle_deg > -90 && o.angle_deg <= 90))
+        throw BadValue{"the angle in the plane must be in (-90, 90]°"};
+      const glm::dvec3 n = plane_normal(cell, o.normal_plane);
+      const glm::dvec3 r = lattice_direction(cell, o.reference_direction);
+      const glm::dvec3 rp = r - glm::dot(r, n) * n;
+      if (glm::length(rp) < 1e-6) throw BadValue{"the reference direction is normal to the plane: it has no trace in it"};
+      const glm::dvec3 u = glm::normalize(rp), w = glm::cross(n, u);  // u, w span the plane, n × u = w
+      const double t = radians(o.angle_deg);
+      const glm::dvec3 inclined = std::cos(t) * u + std::sin(t) * w;  // rotation by t about +n
+      glm::dvec3 v[3];
+      v[index_of(o.normal_axis)] = n;
+      v[index_of(o.inclined)] = inclined;
+      const int third = 3 - index_of(o.normal_axis) - index_of(o.inclined);
+      v[third] = glm::normalize(glm::cross(n, inclined));
+      return frame(v);
+    }
   }
   throw BadValue{"unknown optical orientation"};
 }

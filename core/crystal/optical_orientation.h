@@ -9,8 +9,12 @@
 //     (or from a) in the a–c plane, with the side it lies on: in the obtuse angle β (rotated from
 //     +c toward +a, or from +a toward +c) or in the acute one (from +c away from +a, i.e. toward
 //     −a; from +a away from +c). "Z ∧ c = 44°, in the obtuse angle β" is augite.
-// Triclinic minerals (plagioclase) carry no orientation yet: their published data are angles to
-// poles of several faces (or Euler angles on a universal stage) and vary with composition.
+//   triclinic: as the tables give it for kyanite ("X ⟂ (100); Z′ ∧ c = 27–32° on (100)"): one
+//     indicatrix axis along the normal of a plane (hkl), a second one in that plane at an angle
+//     from the trace of a lattice direction [uvw] projected into it, counter-clockwise seen from
+//     the +normal side (right-handed about the normal); the third completes the frame.
+// Plagioclase has no orientation: its published data (Burri, Parker & Wenk 1967) are the
+// spherical coordinates of X, Y, Z for each composition, not tabulated here yet.
 #include <optional>
 #include <string>
 
@@ -24,7 +28,7 @@ enum class IndicatrixAxis { X, Y, Z };
 enum class MonoclinicSide { ObtuseBeta, AcuteBeta };
 
 struct OpticalOrientation {
-  enum class Kind { Uniaxial, Orthorhombic, Monoclinic };
+  enum class Kind { Uniaxial, Orthorhombic, Monoclinic, Triclinic };
   Kind kind = Kind::Uniaxial;
   // Orthorhombic: the indicatrix axis along a, b, c (a permutation of X, Y, Z).
   IndicatrixAxis along_a = IndicatrixAxis::X, along_b = IndicatrixAxis::Y, along_c = IndicatrixAxis::Z;
@@ -34,6 +38,11 @@ struct OpticalOrientation {
   bool from_a = false;
   double angle_deg = 0.0;
   MonoclinicSide side = MonoclinicSide::ObtuseBeta;
+  // Triclinic: `normal_axis` ∥ the normal of `normal_plane`; `inclined` (≠ normal_axis) in that
+  // plane at angle_deg (signed, (−90°, 90°]) from the projection of `reference_direction`.
+  IndicatrixAxis normal_axis = IndicatrixAxis::X;
+  MillerIndices normal_plane{1, 0, 0};
+  LatticeDirection reference_direction{0, 0, 1};
   std::string source;  // citation
 };
 
