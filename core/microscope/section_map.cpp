@@ -25,14 +25,25 @@ namespace pmsim {
 
 namespace {
 
-// Squared normalised ellipse distance of p from grain g's centre: 1 on the grain's ellipse.
-inline double grain_distance2(const SectionGrain& g, const glm::dvec2& p) {
+// Squared normalised ellipse distance q of p from grain g's centre: 1 on the grain's ellipse.
+inline double ellipse_q(const SectionGrain& g, const glm::dvec2& p) {
   const double dx = p.x - g.centre_mm.x, dy = p.y - g.centre_mm.y;
   return g.metric_xx * dx * dx + 2.0 * g.metric_xy * dx * dy + g.metric_yy * dy * dy;
 }
 
-// Smallest eigenvalue of the grain's metric (= 1/semi_major²): grain_distance2 ≥ it · |p − centre|².
-inline double metric_min(const SectionGrain& g) { return 1.0 / (g.semi_major_mm * g.semi_major_mm); }
+// The distance the tiling minimises: cell_scale·(q − cell_offset). With cell_scale = ab (the
+// product of the semi-axes) and offset 1 it is the power distance |A(p − c)|² − ab of an
+// area-preserving shear A (det 1): a power diagram, whose boundaries are straight between grains
+// of the same shape, like the polygonal grain boundaries of a rock. Old-format files use q itself
+// (scale 1, offset 0: the multiplicatively weighted cells they were made with).
+inline double grain_distance2(const SectionGrain& g, const glm::dvec2& p) {
+  return g.cell_scale * (ellipse_q(g, p) - g.cell_offset);
+}
+
+// grain_distance2 ≥ metric_min·|p − centre|² − cell_scale·cell_offset (metric_min: the smallest
+// eigenvalue of the metric, 1/semi_major², times the scale).
+inline double metric_min(const SectionGrain& g) { return g.cell_scale / (g.semi_major_mm * g.semi_major_mm); }
+inline double metric_floor(const SectionGrain& g) { return g.cell_scale * g.cell_offset; }
 
 // Deterministic hash to [0, 1) (splitmix64 finaliser, Steele et al. 2014): the crack jitter must be
 // the same in every render and every thread.
@@ -116,7 +127,7 @@ void SectionMap::finish() {
               double m = 0.0;
               for (const glm::dvec2 c : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)})
                 m = std::max(m, grain_distance2(grains[i], c));
-              u = std::min(u, m * (1.0 + 1e-9));
+              u = std::min(u, m + 1e-9 * (std::abs(m) + metric_floor(grains[i])));  // rounding margin
               if (found_ring < 0) found_ring = ring;
             }
           }
@@ -129,7 +140,9 @@ void SectionMap::finish() {
   std::vector<std::vector<int>> lists(ncell);
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const SectionGrain& g = grains[i];
-    const double lam = metric_min(g), reach = std::sqrt(u_max / lam) + cell_mm_;
+    const double lam = metric_min(g), floor = metric_floor(g);
+    if (u_max + floor < 0.0) continue;  // its distance exceeds every cell's upper bound
+    const double reach = std::sqrt((u_max + floor) / lam) + cell_mm_;
     int x0, y0, x1, y1;
     cell_of(g.centre_mm - glm::dvec2(reach), x0, y0);
     cell_of(g.centre_mm + glm::dvec2(reach), x1, y1);
@@ -138,7 +151,8 @@ void SectionMap::finish() {
         const glm::dvec2 lo = origin + cell_mm_ * glm::dvec2(cx, cy), hi = lo + glm::dvec2(cell_mm_);
         const double dx = std::max({lo.x - g.centre_mm.x, 0.0, g.centre_mm.x - hi.x});
         const double dy = std::max({lo.y - g.centre_mm.y, 0.0, g.centre_mm.y - hi.y});
-        if (lam * (dx * dx + dy * dy) * (1.0 - 1e-9) <= upper[cy * cells_x_ + cx])
+        const double lower = lam * (dx * dx + dy * dy) - floor;
+        if (lower - 1e-9 * (std::abs(lower) + floor) <= upper[cy * cells_x_ + cx])
           lists[cy * cells_x_ + cx].push_back(static_cast<int>(i));
       }
   }
@@ -202,7 +216,7 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   }
   int zone = static_cast<int>(g.zones.size()) - 1;
   if (zone > 0) {
-    const double r2 = grain_distance2(g, p);
+    const double r2 = ellipse_q(g, p);
     for (int z = 0; z < zone; ++z)
       if (r2 <= g.zones[z].outer_fraction * g.zones[z].outer_fraction) {
         zone = z;
@@ -383,6 +397,8 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     gr.fail("aspect", "an aspect needs a mineral with a habit in its file and euler_deg");
   }
   set_ellipse(g, Q);
+  g.cell_scale = g.semi_major_mm * g.semi_minor_mm;
+  g.cell_offset = 1.0;
 
   if (gr.has("zones")) {
     double prev = 0.0;

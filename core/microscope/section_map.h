@@ -4,8 +4,8 @@
 //
 // Each grain is the central section of its crystal's shape ellipsoid (built from the mineral's
 // habit: prismatic along [uvw], tabular on (hkl), else equant) cut by the section plane, and owns
-// the points where its normalised ellipse distance is smallest (a multiplicatively weighted
-// anisotropic Voronoi tiling). Inside a grain: growth zones (one optical domain each), twin
+// the points where its power distance to that ellipse is smallest (an anisotropic power diagram:
+// near-straight boundaries, each grain roughly filling its ellipse). Inside a grain: growth zones (one optical domain each), twin
 // individuals on the trace of the twin plane (only where that plane is steep enough to show) and
 // cleavage cracks along the traces of the cleavage planes, filled with mounting medium.
 //
@@ -57,6 +57,8 @@ struct SectionGrain {
   double metric_xx = 1.0, metric_xy = 0.0, metric_yy = 1.0;
   double semi_major_mm = 1.0, semi_minor_mm = 1.0, elongation_rad = 0.0;
   bool elongated = false;  // the habit shows in this section (aspect > 1 + 1e-6)
+  // The tiling distance is cell_scale·(x·metric·x − cell_offset) (section_map.cpp).
+  double cell_scale = 1.0, cell_offset = 0.0;
 
   bool twinned = false;  // the file asks for a twin and its plane is steep enough to show
   std::string twin_law;  // as named in the mineral file ("albite", ...); empty when untwinned
