@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/base/input_error.h"
 #include "core/base/units.h"
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/lattice.h"
@@ -313,4 +314,35 @@ TEST(SectionGeometry, ShippedSectionsLoadWithConsistentLabels) {
     EXPECT_EQ(m->domain_at({0.5 * m->width_mm + 1e-3, 0.0}), SectionMap::kSlideDomain) << f.path();
   }
   EXPECT_GE(files, 2);
+}
+
+TEST(SectionGeometry, OldFormatStillLoadsWithItsExplicitGeometry) {
+  // seed / elongation / weight / twin.trace_deg, orientation by axes: the format before mm files.
+  const json s = {{"grains",
+                   {{{"mineral", "plagioclase"}, {"seed", {-0.5, 0.0}}, {"x_axis", {1, 0, 0}}, {"z_axis", {0, 0, 1}},
+                     {"elongation", 3.0}, {"elongation_deg", 90.0}, {"twin", {{"trace_deg", 0.0}, {"width", 0.1}}}},
+                    {{"mineral", "quartz"}, {"seed", {0.5, 0.0}}, {"optic_axis", {0, 0, 1}}}}}};
+  const SectionMap m = section_from_json(s, "old format");
+  EXPECT_EQ(m.width_mm, 4.0);  // the old field-sized extent, −2…2
+  EXPECT_EQ(m.grain_label(m.domain_at({-0.5, 0.01})), 1);
+  EXPECT_EQ(m.grain_label(m.domain_at({0.6, 0.0})), 2);
+  // Elongated north (3 : 1): at (−0.5, 1.2) grain 1's distance is (1.2/3)² = 0.16 against quartz's
+  // 1² + 1.2² = 2.44.
+  EXPECT_EQ(m.grain_label(m.domain_at({-0.5, 1.2})), 1);
+  // Lamellae 0.1 wide along east: alternate individuals going north from the seed.
+  EXPECT_NE(m.domain_at({-0.5, 0.05}), m.domain_at({-0.5, 0.15}));
+  EXPECT_EQ(m.domain_at({-0.5, 0.05}), m.domain_at({-0.5, 0.25}));
+  EXPECT_TRUE(m.grains[0].twinned);
+  EXPECT_TRUE(m.grains[1].cracks.empty());
+}
+
+TEST(SectionGeometry, UnknownTwinLawIsBadInputNamingTheKey) {
+  json s = one_grain_section("augite", {10.0, 80.0, 30.0});
+  s["grains"][0]["twin"] = {{"law", "albite"}};
+  try {
+    (void)section_from_json(s, "bad twin");
+    FAIL() << "augite has no albite law";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("grains[0].twin.law"), std::string::npos) << e.what();
+  }
 }
