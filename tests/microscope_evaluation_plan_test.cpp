@@ -45,18 +45,31 @@ Scene quartz_plate(int size) {
 
 }  // namespace
 
-TEST(OpticalDomains, SectionHasTwoDomainsPerGrainSharingTheGrainsMineral) {
+TEST(OpticalDomains, SectionDomainsAreSlideMediumThenEachGrainsZonesAndTwins) {
   Scene s = quartz_plate(8);
   s.sample.type = SampleType::Section;
-  s.sample.section = "basalt";
+  s.sample.section = "gabbro";  // has twinned and zoned (hornblende-rimmed) augite
   const OpticalDomains d = optical_domains(s);
   ASSERT_NE(d.section, nullptr);
   ASSERT_GT(d.section->grains.size(), 1u);
-  ASSERT_EQ(d.domains.size(), 2 * d.section->grains.size());  // a grain and its twin lamellae
-  for (std::size_t g = 0; g < d.section->grains.size(); ++g) {
-    EXPECT_EQ(d.domains[2 * g].mineral, d.section->grains[g].mineral);
-    EXPECT_EQ(d.domains[2 * g + 1].mineral, d.section->grains[g].mineral);
+  EXPECT_EQ(d.domains[SectionMap::kSlideDomain].crystal, nullptr);
+  EXPECT_EQ(d.domains[SectionMap::kMediumDomain].crystal, nullptr);
+  std::size_t expected = 2;
+  bool zoned = false, twinned = false;
+  for (const SectionGrain& g : d.section->grains) {
+    const int per_zone = g.twinned ? 2 : 1;
+    ASSERT_EQ(g.first_domain, static_cast<int>(expected));
+    for (std::size_t z = 0; z < g.zones.size(); ++z)
+      for (int t = 0; t < per_zone; ++t)
+        EXPECT_EQ(d.domains[g.first_domain + z * per_zone + t].mineral, g.zones[z].mineral);
+    EXPECT_EQ(g.zones.front().mineral, g.mineral);
+    expected += g.zones.size() * per_zone;
+    zoned |= g.zones.size() > 1;
+    twinned |= g.twinned;
   }
+  EXPECT_EQ(d.domains.size(), expected);
+  EXPECT_TRUE(zoned);
+  EXPECT_TRUE(twinned);
 }
 
 TEST(OpticalDomains, PlateAndEmptyStageAreOneDomain) {

@@ -108,7 +108,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     } catch (const std::invalid_argument&) {
       // Seen end-on (elongation along the normal) or flat on the tabular plane: equant in section.
     }
-  } else if (g.elongation > 1.0) {
+  } else if (g.elongated) {
     // No crystallography: the grain's drawn shape (SectionGrain::elongation_rad) is its elongation.
     elongation = glm::dvec3(std::cos(g.elongation_rad), std::sin(g.elongation_rad), 0.0);
   }

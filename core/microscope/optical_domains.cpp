@@ -26,11 +26,12 @@ OpticalDomains optical_domains(const Scene& scene) {
     out.domains.push_back({nullptr, glm::dmat3(1.0), scene.sample.thickness_um, "empty stage"});
   } else if (scene.sample.type == SampleType::Section) {
     out.section = load_section(scene.sample.section);
-    for (int d = 0; d < out.section->domain_count(); ++d) {
-      const SectionGrain& g = out.section->grain_of_domain(d);
-      out.domains.push_back({g.crystal, rotate_stage(out.section->orientation_of_domain(d), stage_rad),
-                             scene.sample.thickness_um, g.mineral});
-    }
+    // Slide and mounting medium (domains 0, 1) carry no crystal: isotropic, dark between
+    // crossed polars.
+    for (int d = 0; d < out.section->domain_count(); ++d)
+      out.domains.push_back({out.section->crystal_of_domain(d),
+                             rotate_stage(out.section->orientation_of_domain(d), stage_rad),
+                             scene.sample.thickness_um, out.section->mineral_of_domain(d)});
   } else {
     const Crystal* c;
     if (scene.sample.crystal) {

@@ -1,8 +1,8 @@
 #pragma once
 // The optical domains of a scene's specimen: the regions of one crystal, orientation and thickness
-// that the evaluation treats as one plate — the plate or wedge on the stage, every grain of a thin
-// section and its twin lamellae (two domains per grain), or the empty stage (one domain without a
-// crystal).
+// that the evaluation treats as one plate — the plate or wedge on the stage, every zone and twin
+// individual of a thin section's grains with its slide and mounting medium (section_map.h), or
+// the empty stage (one domain without a crystal).
 #include <memory>
 #include <string>
 #include <vector>

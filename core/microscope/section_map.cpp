@@ -1,87 +1,174 @@
 #include "core/microscope/section_map.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/base/units.h"
+#include "core/crystal/euler_angles.h"
+#include "core/crystal/lattice.h"
+#include "core/crystal/mineral_crystallography.h"
+#include "core/crystal/section_optics.h"
 #include "core/microscope/sample_source.h"
 
 namespace pmsim {
 
 namespace {
-// Squared distance of p from grain g's seed in its anisotropic metric, over its weight².
-inline double grain_distance(const SectionGrain& g, const glm::dvec2& p) {
-  const glm::dvec2 d = p - g.seed;
-  const double c = g.cos_elong, s = g.sin_elong;
-  const double along = (d.x * c + d.y * s) / g.elongation, across = -d.x * s + d.y * c;
-  return (along * along + across * across) / (g.weight * g.weight);
+
+// Squared normalised ellipse distance q of p from grain g's centre: 1 on the grain's ellipse.
+inline double ellipse_q(const SectionGrain& g, const glm::dvec2& p) {
+  const double dx = p.x - g.centre_mm.x, dy = p.y - g.centre_mm.y;
+  return g.metric_xx * dx * dx + 2.0 * g.metric_xy * dx * dy + g.metric_yy * dy * dy;
 }
+
+// The distance the tiling minimises: cell_scale·(q − cell_offset). With cell_scale = ab (the
+// product of the semi-axes) and offset 1 it is the power distance |A(p − c)|² − ab of an
+// area-preserving shear A (det 1): a power diagram, whose boundaries are straight between grains
+// of the same shape, like the polygonal grain boundaries of a rock. Old-format files use q itself
+// (scale 1, offset 0: the multiplicatively weighted cells they were made with).
+inline double grain_distance2(const SectionGrain& g, const glm::dvec2& p) {
+  return g.cell_scale * (ellipse_q(g, p) - g.cell_offset);
+}
+
+// grain_distance2 ≥ metric_min·|p − centre|² − cell_scale·cell_offset (metric_min: the smallest
+// eigenvalue of the metric, 1/semi_major², times the scale).
+inline double metric_min(const SectionGrain& g) { return g.cell_scale / (g.semi_major_mm * g.semi_major_mm); }
+inline double metric_floor(const SectionGrain& g) { return g.cell_scale * g.cell_offset; }
+
+// Deterministic hash to [0, 1) (splitmix64 finaliser, Steele et al. 2014): the crack jitter must be
+// the same in every render and every thread.
+double hash01(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d = 0) {
+  std::uint64_t z = a * 0x9E3779B97F4A7C15ull ^ (b + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull ^
+                    (c + 0x2545F4914F6CDD1Dull) * 0x94D049BB133111EBull ^ d * 0xD6E8FEB86659FD93ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+
 }  // namespace
 
-void SectionMap::build_index() {
-  const int N = kIndexCells;
-  const double cell = 2.0 * kIndexHalf / N;
-  cell_start_.assign(1, 0);
-  cell_grains_.clear();
-  std::vector<double> lower(grains.size());
-  for (int cy = 0; cy < N; ++cy)
-    for (int cx = 0; cx < N; ++cx) {
-      const glm::dvec2 lo{-kIndexHalf + cx * cell, -kIndexHalf + cy * cell}, hi = lo + glm::dvec2(cell);
-      // dist is a convex quadratic: its maximum over the cell is at a corner; its minimum is at
-      // least min(1, 1/e²)·|p − seed|²/w² ≥ that factor times the cell's squared distance.
-      double upper = 1e300;
-      for (std::size_t i = 0; i < grains.size(); ++i) {
-        const SectionGrain& g = grains[i];
-        double u = 0.0;
-        for (const glm::dvec2 c : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)})
-          u = std::max(u, grain_distance(g, c));
-        upper = std::min(upper, u * (1.0 + 1e-9));
-        const double dx = std::max({lo.x - g.seed.x, 0.0, g.seed.x - hi.x});
-        const double dy = std::max({lo.y - g.seed.y, 0.0, g.seed.y - hi.y});
-        const double e = g.elongation;
-        lower[i] = (dx * dx + dy * dy) * std::min(1.0, 1.0 / (e * e)) / (g.weight * g.weight) * (1.0 - 1e-9);
-      }
-      for (std::size_t i = 0; i < grains.size(); ++i)
-        if (lower[i] <= upper) cell_grains_.push_back(static_cast<int>(i));
-      cell_start_.push_back(static_cast<int>(cell_grains_.size()));
-    }
-  indexed_grains_ = grains.size();
+const Crystal* SectionMap::crystal_of_domain(int d) const {
+  if (d < 2) return nullptr;
+  const SectionGrain& g = grains[domain_grain_[d]];
+  const int per_zone = g.twinned ? 2 : 1;
+  return g.zones[(d - g.first_domain) / per_zone].crystal;
 }
 
-int SectionMap::nearest_grain(const glm::dvec2& p) const {
-  const int* first = nullptr;
-  const int* last = nullptr;
-  if (indexed_grains_ == grains.size() && !cell_start_.empty()) {
-    const double fx = (p.x + kIndexHalf) / (2.0 * kIndexHalf) * kIndexCells;
-    const double fy = (p.y + kIndexHalf) / (2.0 * kIndexHalf) * kIndexCells;
-    if (fx >= 0 && fy >= 0 && fx < kIndexCells && fy < kIndexCells) {
-      const int c = static_cast<int>(fy) * kIndexCells + static_cast<int>(fx);
-      first = cell_grains_.data() + cell_start_[c];
-      last = cell_grains_.data() + cell_start_[c + 1];
-    }
+const glm::dmat3& SectionMap::orientation_of_domain(int d) const {
+  static const glm::dmat3 identity(1.0);
+  if (d < 2) return identity;
+  const SectionGrain& g = grains[domain_grain_[d]];
+  const int per_zone = g.twinned ? 2 : 1, k = d - g.first_domain;
+  const SectionZone& z = g.zones[k / per_zone];
+  return (k % per_zone) ? z.twin_orientation : z.orientation;
+}
+
+const std::string& SectionMap::mineral_of_domain(int d) const {
+  static const std::string slide = "slide", medium = "mounting medium";
+  if (d == kSlideDomain) return slide;
+  if (d == kMediumDomain) return medium;
+  const SectionGrain& g = grains[domain_grain_[d]];
+  return g.zones[(d - g.first_domain) / (g.twinned ? 2 : 1)].mineral;
+}
+
+void SectionMap::finish() {
+  domain_grain_.assign(2, -1);
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    SectionGrain& g = grains[i];
+    g.first_domain = static_cast<int>(domain_grain_.size());
+    const std::size_t n = g.zones.size() * (g.twinned ? 2 : 1);
+    domain_grain_.insert(domain_grain_.end(), n, static_cast<int>(i));
   }
+  // Grid over the extent with about two cells per grain, at most 1024 a side.
+  const double area = width_mm * height_mm;
+  cell_mm_ = std::sqrt(area / std::max<double>(1.0, 2.0 * static_cast<double>(grains.size())));
+  cell_mm_ = std::max({cell_mm_, width_mm / 1024.0, height_mm / 1024.0});
+  cells_x_ = std::max(1, static_cast<int>(std::ceil(width_mm / cell_mm_)));
+  cells_y_ = std::max(1, static_cast<int>(std::ceil(height_mm / cell_mm_)));
+  const int ncell = cells_x_ * cells_y_;
+  const glm::dvec2 origin{-0.5 * width_mm, -0.5 * height_mm};
+  auto cell_of = [&](const glm::dvec2& p, int& cx, int& cy) {
+    cx = std::clamp(static_cast<int>(std::floor((p.x - origin.x) / cell_mm_)), 0, cells_x_ - 1);
+    cy = std::clamp(static_cast<int>(std::floor((p.y - origin.y) / cell_mm_)), 0, cells_y_ - 1);
+  };
+  // Pass 1: an upper bound of the nearest distance per cell, from the grains centred in the
+  // nearest non-empty rings of cells (any grain's largest corner distance bounds it: the
+  // distance is a convex quadratic, so its maximum over a cell is at a corner).
+  std::vector<std::vector<int>> bucket(ncell);
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    int cx, cy;
+    cell_of(grains[i].centre_mm, cx, cy);
+    bucket[cy * cells_x_ + cx].push_back(static_cast<int>(i));
+  }
+  std::vector<double> upper(ncell, 1e300);
+  const int max_ring = std::max(cells_x_, cells_y_);
+  for (int cy = 0; cy < cells_y_; ++cy)
+    for (int cx = 0; cx < cells_x_; ++cx) {
+      const glm::dvec2 lo = origin + cell_mm_ * glm::dvec2(cx, cy), hi = lo + glm::dvec2(cell_mm_);
+      double u = 1e300;
+      int found_ring = -1;
+      for (int ring = 0; ring <= max_ring && (found_ring < 0 || ring <= found_ring + 1); ++ring)
+        for (int y = cy - ring; y <= cy + ring; ++y)
+          for (int x = cx - ring; x <= cx + ring; ++x) {
+            if (std::max(std::abs(x - cx), std::abs(y - cy)) != ring) continue;
+            if (x < 0 || y < 0 || x >= cells_x_ || y >= cells_y_) continue;
+            for (const int i : bucket[y * cells_x_ + x]) {
+              double m = 0.0;
+              for (const glm::dvec2 c : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)})
+                m = std::max(m, grain_distance2(grains[i], c));
+              u = std::min(u, m + 1e-9 * (std::abs(m) + metric_floor(grains[i])));  // rounding margin
+              if (found_ring < 0) found_ring = ring;
+            }
+          }
+      upper[cy * cells_x_ + cx] = u;
+    }
+  const double u_max = grains.empty() ? 0.0 : *std::max_element(upper.begin(), upper.end());
+  // Pass 2: a grain can be nearest in a cell only if its lower bound there (metric_min times
+  // the squared distance from its centre to the cell) is at most the cell's upper bound, which
+  // never exceeds u_max: so only cells within sqrt(u_max / metric_min) of its centre are tried.
+  std::vector<std::vector<int>> lists(ncell);
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const SectionGrain& g = grains[i];
+    const double lam = metric_min(g), floor = metric_floor(g);
+    if (u_max + floor < 0.0) continue;  // its distance exceeds every cell's upper bound
+    const double reach = std::sqrt((u_max + floor) / lam) + cell_mm_;
+    int x0, y0, x1, y1;
+    cell_of(g.centre_mm - glm::dvec2(reach), x0, y0);
+    cell_of(g.centre_mm + glm::dvec2(reach), x1, y1);
+    for (int cy = y0; cy <= y1; ++cy)
+      for (int cx = x0; cx <= x1; ++cx) {
+        const glm::dvec2 lo = origin + cell_mm_ * glm::dvec2(cx, cy), hi = lo + glm::dvec2(cell_mm_);
+        const double dx = std::max({lo.x - g.centre_mm.x, 0.0, g.centre_mm.x - hi.x});
+        const double dy = std::max({lo.y - g.centre_mm.y, 0.0, g.centre_mm.y - hi.y});
+        const double lower = lam * (dx * dx + dy * dy) - floor;
+        if (lower - 1e-9 * (std::abs(lower) + floor) <= upper[cy * cells_x_ + cx])
+          lists[cy * cells_x_ + cx].push_back(static_cast<int>(i));
+      }
+  }
+  cell_start_.assign(1, 0);
+  cell_grains_.clear();
+  for (const auto& l : lists) {
+    cell_grains_.insert(cell_grains_.end(), l.begin(), l.end());
+    cell_start_.push_back(static_cast<int>(cell_grains_.size()));
+  }
+}
+
+int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
   int best = 0;
   double best_d = 1e300;
-  if (first) {  // candidates in increasing index: the same winner as the full search, ties included
-    for (const int* it = first; it != last; ++it) {
-      const double dist = grain_distance(grains[*it], p);
-      if (dist < best_d) {
-        best_d = dist;
-        best = *it;
-      }
-    }
-    return best;
-  }
   for (std::size_t i = 0; i < grains.size(); ++i) {
-    const double dist = grain_distance(grains[i], p);
+    const double dist = grain_distance2(grains[i], p);
     if (dist < best_d) {
       best_d = dist;
       best = static_cast<int>(i);
@@ -90,14 +177,64 @@ int SectionMap::nearest_grain(const glm::dvec2& p) const {
   return best;
 }
 
-int SectionMap::domain_at(const glm::dvec2& p) const {
-  const int best = nearest_grain(p);
-  const SectionGrain& g = grains[best];
-  int lamella = 0;
-  if (g.twinned) {
-    lamella = static_cast<int>(std::floor(glm::dot(p - g.seed, g.twin_normal) / g.twin_width)) & 1;
+int SectionMap::nearest_grain(const glm::dvec2& p) const {
+  if (cell_start_.empty()) return nearest_grain_exhaustive(p);
+  const int cx = std::clamp(static_cast<int>(std::floor((p.x + 0.5 * width_mm) / cell_mm_)), 0, cells_x_ - 1);
+  const int cy = std::clamp(static_cast<int>(std::floor((p.y + 0.5 * height_mm) / cell_mm_)), 0, cells_y_ - 1);
+  const int c = cy * cells_x_ + cx;
+  int best = 0;
+  double best_d = 1e300;
+  // Candidates in increasing index: the same winner as the exhaustive search, ties included.
+  for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+    const int i = cell_grains_[k];
+    const double dist = grain_distance2(grains[i], p);
+    if (dist < best_d) {
+      best_d = dist;
+      best = i;
+    }
   }
-  return 2 * best + lamella;
+  return best;
+}
+
+int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
+  const SectionGrain& g = grains[gi];
+  const glm::dvec2 d = p - g.centre_mm;
+  // Cleavage cracks: in family f, crack k lies near offset (k + ½ + jitter)·spacing along the
+  // trace normal (jitter ±0.3 spacing) and is broken into segments 4 spacings long of which
+  // about 80 % are open: cleavage cracks in thin section are discontinuous, unevenly spaced lines.
+  for (std::size_t f = 0; f < g.cracks.size(); ++f) {
+    const CleavageCracks& c = g.cracks[f];
+    const double s = glm::dot(d, c.normal) / c.spacing_mm;
+    const double k = std::floor(s);
+    const auto ki = static_cast<std::uint64_t>(static_cast<std::int64_t>(k));
+    const double centre = 0.5 + 0.6 * (hash01(gi, f, ki) - 0.5);
+    if (std::abs(s - k - centre) * c.spacing_mm < 0.5 * crack_width_mm) {
+      const double along = (d.x * c.normal.y - d.y * c.normal.x) / (4.0 * c.spacing_mm) + hash01(gi, f, ki, 1);
+      const auto seg = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(along)));
+      if (hash01(gi, f + 17, ki, seg + 2) < 0.8) return kMediumDomain;
+    }
+  }
+  int zone = static_cast<int>(g.zones.size()) - 1;
+  if (zone > 0) {
+    const double r2 = ellipse_q(g, p);
+    for (int z = 0; z < zone; ++z)
+      if (r2 <= g.zones[z].outer_fraction * g.zones[z].outer_fraction) {
+        zone = z;
+        break;
+      }
+  }
+  int twin = 0;
+  if (g.twinned) {
+    const double t = glm::dot(d, g.twin_normal);
+    twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
+  }
+  return g.first_domain + zone * (g.twinned ? 2 : 1) + twin;
+}
+
+int SectionMap::domain_at(const glm::dvec2& p) const {
+  if (grains.empty() || !(std::abs(p.x) <= 0.5 * width_mm && std::abs(p.y) <= 0.5 * height_mm))
+    return kSlideDomain;
+  return domain_in_grain(nearest_grain(p), p);
 }
 
 namespace {
@@ -112,74 +249,296 @@ glm::dmat3 half_turn(const glm::dvec3& u) {
   return r;
 }
 
-SectionMap parse_section(const std::string& path) {
-  const json j = read_json_file(path, "thin-section file");
+// Crack spacing by cleavage quality (mm): perfect cleavages (micas, amphiboles) show closely
+// spaced traces, good ones (pyroxenes) wider, poor ones (olivine) a few irregular fractures per
+// grain (Nesse 2012, "Introduction to Optical Mineralogy", 4th ed., §5 "cleavage"; the figures of
+// MacKenzie & Adams 1994, "A Colour Atlas of Rocks and Minerals in Thin Section"). Partings are
+// not drawn: they develop only in some crystals.
+std::optional<double> crack_spacing_mm(CleavageQuality q) {
+  switch (q) {
+    case CleavageQuality::Perfect: return 0.025;
+    case CleavageQuality::VeryGood: return 0.04;
+    case CleavageQuality::Good: return 0.06;
+    case CleavageQuality::Distinct: return 0.09;
+    case CleavageQuality::Fair: return 0.12;
+    case CleavageQuality::Imperfect: return 0.16;
+    case CleavageQuality::Poor: return 0.22;
+    case CleavageQuality::Parting: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+// Planes within this angle of vertical show as sharp traces: a plane inclined θ from the
+// vertical smears across t·tan θ of a t = 30 µm section (17 µm at 30°), comparable to the crack
+// spacing of a good cleavage; steeper inclinations give diffuse bands that are not seen as cracks.
+constexpr double kCleavageMaxInclinationDeg = 30.0;
+// Lamellae of width w stay distinct while the smear t·tan θ is under half a lamella, θ ≤
+// atan(w / 2t) (18° for 20 µm lamellae in a 30 µm section), but no more than the cleavage limit.
+double lamella_max_inclination_deg(double lamella_mm, double thickness_um) {
+  return std::min(kCleavageMaxInclinationDeg, degrees(std::atan(lamella_mm / (2.0 * thickness_um * 1e-3))));
+}
+// A simple twin's two halves are told apart unless its plane is near the section (they overlap
+// through the thickness over t·tan θ: 52 µm at 60°, small against mm-sized grains).
+constexpr double kSimpleTwinMaxInclinationDeg = 60.0;
+
+// Default true aspect ratios (length / width) of a habit when the file gives none: prisms of
+// pyroxene and amphibole about 3 : 1, plates (micas) about 5 : 1 diameter / thickness (Deer, Howie
+// & Zussman 2013, habit descriptions).
+constexpr double kPrismAspect = 3.0;
+constexpr double kPlateAspect = 5.0;
+
+// Inclination of a plane (unit normal in the section frame) from the vertical, degrees.
+double inclination_from_vertical_deg(const glm::dvec3& n) { return degrees(std::asin(std::min(1.0, std::abs(n.z)))); }
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Sets the grain's ellipse from the central section of a shape ellipsoid Σ uᵢuᵢᵀ/sᵢ² (section
+// frame): points (x, y, 0) inside it satisfy the top-left 2×2 block of the quadratic form.
+void set_ellipse(SectionGrain& g, const glm::dmat3& Q) {
+  g.metric_xx = Q[0][0];
+  g.metric_xy = 0.5 * (Q[0][1] + Q[1][0]);
+  g.metric_yy = Q[1][1];
+  const double tr = g.metric_xx + g.metric_yy, det = g.metric_xx * g.metric_yy - g.metric_xy * g.metric_xy;
+  const double disc = std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+  const double lmin = 0.5 * tr - disc, lmax = 0.5 * tr + disc;
+  g.semi_major_mm = 1.0 / std::sqrt(lmin);
+  g.semi_minor_mm = 1.0 / std::sqrt(lmax);
+  // Eigenvector of lmin: (xy, lmin − xx) or (lmin − yy, xy).
+  glm::dvec2 v = std::abs(g.metric_xy) > 1e-15 * tr ? glm::dvec2(g.metric_xy, lmin - g.metric_xx)
+                                                     : (g.metric_xx <= g.metric_yy ? glm::dvec2(1, 0) : glm::dvec2(0, 1));
+  g.elongation_rad = std::atan2(v.y, v.x);
+  if (g.elongation_rad < 0) g.elongation_rad += kPi;
+  if (g.elongation_rad >= kPi) g.elongation_rad -= kPi;
+  g.elongated = g.semi_major_mm > g.semi_minor_mm * (1.0 + 1e-6);
+}
+
+glm::dmat3 outer(const glm::dvec3& u, double s) {
+  glm::dmat3 m(0.0);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) m[c][r] = u[c] * u[r] / (s * s);
+  return m;
+}
+
+// Any unit vector perpendicular to u.
+glm::dvec3 perpendicular(const glm::dvec3& u) {
+  const glm::dvec3 a = std::abs(u.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(u, a));
+}
+
+std::vector<double> numbers(const JsonReader& gr, const char* k, int n) {
+  const json& gj = gr.node();
+  if (!gj.contains(k) || !gj[k].is_array() || static_cast<int>(gj[k].size()) != n)
+    throw InputError(gr.file(), gr.path(k), gj.contains(k) ? shown(gj[k]) : "",
+                     "expected an array of " + std::to_string(n) + " numbers");
+  std::vector<double> v;
+  for (const json& x : gj[k]) v.push_back(gr.checked(k, gj[k], [&](const json&) { return number_value(x); }));
+  return v;
+}
+
+const Crystal& known_mineral(const JsonReader& r, const char* key, const std::string& name) {
+  if (!mineral_known(name))
+    throw InputError(r.file(), r.path(key), name, "unknown mineral (known: " + known_minerals_list() + ")");
+  return find_mineral(name);
+}
+
+// The old format: seeds in field units, explicit elongation, weight and twin trace; no
+// crystallography (kept so that older files keep loading with the same grain map).
+void read_legacy_grain(const JsonReader& gr, SectionGrain& g) {
+  const auto s = numbers(gr, "seed", 2);
+  g.centre_mm = {s[0], s[1]};
+  const double e = gr.get_or("elongation", 1.0, Range::above(0));
+  const double ang = radians(gr.get_or("elongation_deg", 0.0));
+  const double w = gr.get_or("weight", 1.0, Range::above(0));
+  const glm::dvec3 u{std::cos(ang), std::sin(ang), 0.0}, v{-std::sin(ang), std::cos(ang), 0.0};
+  set_ellipse(g, outer(u, e * w) + outer(v, w) + outer({0, 0, 1}, 1.0));
+  if (const auto t = gr.optional_object("twin")) {
+    g.twinned = true;
+    g.twin_law = "albite";
+    g.twin_trace_rad = radians(t->get_or("trace_deg", 0.0));
+    g.lamella_mm = t->get_or("width", 0.05, Range::above(0));
+    g.twin_normal = {-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
+    const glm::dvec3 axis{g.twin_normal.x, g.twin_normal.y, 0.0};
+    g.twin_orientation = half_turn(axis) * g.orientation;
+  } else {
+    g.twin_orientation = g.orientation;
+  }
+}
+
+void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
+  const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
+  const bool has_lattice = g.lattice_to_section.has_value() && mc;
+  const glm::dmat3 L = has_lattice ? *g.lattice_to_section : glm::dmat3(1.0);
+  const auto c = numbers(gr, "centre_mm", 2);
+  g.centre_mm = {c[0], c[1]};
+  const double size = gr.require<double>("size_mm", Range::above(0));
+  // The crystal's shape: an ellipsoid whose longest axis is size_mm, along the habit.
+  glm::dmat3 Q = outer({1, 0, 0}, 0.5 * size) + outer({0, 1, 0}, 0.5 * size) + outer({0, 0, 1}, 0.5 * size);
+  if (has_lattice && (mc->habit.elongation || mc->habit.tabular)) {
+    const bool both = mc->habit.elongation && mc->habit.tabular;
+    const double aspect = gr.get_or("aspect", mc->habit.tabular ? kPlateAspect : kPrismAspect, Range::at_least(1));
+    if (both) {  // a lath: length along [uvw], thickness ⟂ (hkl), width between (√aspect)
+      const glm::dvec3 e = L * lattice_direction(mc->cell, *mc->habit.elongation);
+      const glm::dvec3 n0 = L * plane_normal(mc->cell, *mc->habit.tabular);
+      const glm::dvec3 n = glm::normalize(n0 - glm::dot(n0, e) * e);
+      Q = outer(e, 0.5 * size) + outer(n, 0.5 * size / aspect) + outer(glm::cross(e, n), 0.5 * size / std::sqrt(aspect));
+    } else if (mc->habit.elongation) {
+      const glm::dvec3 e = L * lattice_direction(mc->cell, *mc->habit.elongation);
+      const glm::dvec3 p = perpendicular(e);
+      Q = outer(e, 0.5 * size) + outer(p, 0.5 * size / aspect) + outer(glm::cross(e, p), 0.5 * size / aspect);
+    } else {
+      const glm::dvec3 n = L * plane_normal(mc->cell, *mc->habit.tabular);
+      const glm::dvec3 p = perpendicular(n);
+      Q = outer(n, 0.5 * size / aspect) + outer(p, 0.5 * size) + outer(glm::cross(n, p), 0.5 * size);
+    }
+  } else if (gr.has("aspect")) {
+    gr.fail("aspect", "an aspect needs a mineral with a habit in its file and euler_deg");
+  }
+  set_ellipse(g, Q);
+  g.cell_scale = g.semi_major_mm * g.semi_minor_mm;
+  g.cell_offset = 1.0;
+
+  if (gr.has("zones")) {
+    double prev = 0.0;
+    for (const JsonReader& z : gr.objects("zones", 1)) {
+      SectionZone zone;
+      zone.mineral = z.require<std::string>("mineral");
+      zone.crystal = &known_mineral(z, "mineral", zone.mineral);
+      zone.outer_fraction = z.require<double>("outer_fraction", Range::open_closed(0, 1e308));
+      if (zone.outer_fraction <= prev) z.fail("outer_fraction", "zone radii must increase outward");
+      prev = zone.outer_fraction;
+      const MineralCrystallography* zc = find_mineral_crystallography(zone.mineral);
+      zone.orientation = (has_lattice && zc && zc->orientation) ? L * zc->indicatrix_axes : g.orientation;
+      g.zones.push_back(zone);
+    }
+  }
+
+  if (const auto t = gr.optional_object("twin")) {
+    const std::string law = t->require<std::string>("law");
+    if (!has_lattice || mc->twins.empty())
+      t->fail("law", "mineral '" + g.mineral + "' has no twin laws in its file (or the grain no euler_deg)");
+    const TwinLaw* found = nullptr;
+    for (const TwinLaw& tl : mc->twins)
+      if (lower(tl.law).rfind(lower(law), 0) == 0) {
+        found = &tl;
+        break;
+      }
+    if (!found) {
+      std::string known;
+      for (const TwinLaw& tl : mc->twins) known += (known.empty() ? "" : "; ") + tl.law;
+      t->fail("law", "not a twin law of " + g.mineral + " (its file lists: " + known + ")");
+    }
+    g.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
+    const glm::dvec3 n = L * plane_normal(mc->cell, found->plane);
+    // The twin operation: a half-turn about the twin axis. A law whose name gives "twin axis
+    // [uvw]" (Carlsbad [001], the mica law [310]) is a parallel twin about that lattice
+    // direction; otherwise it is a normal twin, the half-turn about the composition-plane normal
+    // (albite: the (010) normal; Nesse 2012 §7 "twinning").
+    glm::dvec3 axis = n;
+    const std::string lt = lower(found->law);
+    if (const auto at = lt.find("twin axis ["); at != std::string::npos) {
+      const auto end = lt.find(']', at);
+      axis = L * gr.checked("twin", t->node(), [&](const json&) {
+        return lattice_direction(mc->cell, parse_lattice_direction(found->law.substr(at + 10, end - at - 9)));
+      });
+    }
+    const double limit = g.lamella_mm > 0.0 ? lamella_max_inclination_deg(g.lamella_mm, thickness_um)
+                                            : kSimpleTwinMaxInclinationDeg;
+    if (inclination_from_vertical_deg(n) <= limit) {
+      g.twinned = true;
+      g.twin_law = law;
+      const glm::dvec3 tr = plane_trace({0, 0, 1}, n);
+      g.twin_trace_rad = std::atan2(tr.y, tr.x);
+      g.twin_normal = glm::normalize(glm::dvec2(n.x, n.y));
+      const glm::dmat3 R = half_turn(axis);
+      g.twin_orientation = R * g.orientation;
+      for (SectionZone& z : g.zones) z.twin_orientation = R * z.orientation;
+    }
+  }
+  if (!g.twinned) {
+    g.twin_orientation = g.orientation;
+    for (SectionZone& z : g.zones) z.twin_orientation = z.orientation;
+  }
+
+  if (has_lattice)
+    for (const Cleavage& cl : mc->cleavage) {
+      const auto spacing = crack_spacing_mm(cl.quality);
+      const glm::dvec3 n = L * plane_normal(mc->cell, cl.plane);
+      if (!spacing || inclination_from_vertical_deg(n) > kCleavageMaxInclinationDeg) continue;
+      CleavageCracks k;
+      k.plane = miller_text(cl.plane);
+      const glm::dvec3 tr = plane_trace({0, 0, 1}, n);
+      k.trace_rad = std::atan2(tr.y, tr.x);
+      k.normal = glm::normalize(glm::dvec2(n.x, n.y));
+      k.spacing_mm = *spacing;
+      g.cracks.push_back(k);
+    }
+}
+
+SectionMap parse_section(const json& j, const std::string& path) {
   if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
   const JsonReader r(j, path);
   SectionMap m;
   m.path = path;
   m.name = r.get_or<std::string>("name", path);
   m.source = r.get_or<std::string>("source", "");
-  if (r.has("thickness_um")) m.thickness_um = r.require<double>("thickness_um");
+  if (r.has("thickness_um")) m.thickness_um = r.require<double>("thickness_um", Range::above(0));
+  if (r.has("size_mm")) {
+    const auto s = numbers(r, "size_mm", 2);
+    if (!(s[0] > 0 && s[1] > 0)) r.fail("size_mm", "the extent must be positive");
+    m.width_mm = s[0];
+    m.height_mm = s[1];
+  }
   for (const JsonReader& gr : r.objects("grains", 1)) {
-    const json& gj = gr.node();
-    const std::string& key = gr.prefix();
-    auto vec = [&](const char* k, int n) {
-      if (!gj.contains(k) || !gj[k].is_array() || static_cast<int>(gj[k].size()) != n)
-        throw InputError(path, key + "." + k, gj.contains(k) ? shown(gj[k]) : "",
-                         "expected an array of " + std::to_string(n) + " numbers");
-      std::vector<double> v;
-      for (const json& x : gj[k]) {
-        try {
-          v.push_back(number_value(x));
-        } catch (const BadValue& b) {
-          gr.fail(k, gj[k], b.why);
-        }
-      }
-      return v;
-    };
     SectionGrain g;
-    g.mineral = gr.get_or<std::string>("mineral", "");
-    if (!mineral_known(g.mineral))
-      throw InputError(path, key + ".mineral", g.mineral,
-                       "unknown mineral (known: " + known_minerals_list() + ")");
-    g.crystal = &find_mineral(g.mineral);
-    const auto s = vec("seed", 2);
-    g.seed = {s[0], s[1]};
-    g.elongation = gr.get_or("elongation", 1.0, Range::above(0));
-    g.elongation_rad = radians(gr.get_or("elongation_deg", 0.0));
-    g.weight = gr.get_or("weight", 1.0, Range::above(0));
+    g.mineral = gr.require<std::string>("mineral");
+    g.crystal = &known_mineral(gr, "mineral", g.mineral);
+    const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
     try {
-      if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
-        const auto x = vec("x_axis", 3), z = vec("z_axis", 3);
+      if (gr.has("euler_deg")) {
+        const auto e = numbers(gr, "euler_deg", 3);
+        const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
+        // Without crystallography in the mineral file the indicatrix axes stand for the crystal
+        // frame (X, Y, Z = e1, e2, e3): the orientation is still uniformly specified, but habit,
+        // twins and cleavage cannot be placed.
+        if (mc && mc->orientation) {
+          g.lattice_to_section = L;
+          g.orientation = L * mc->indicatrix_axes;
+        } else {
+          g.orientation = L;
+        }
+      } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
+        const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
         g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
       } else {
-        const auto a = vec("optic_axis", 3);
+        const auto a = numbers(gr, "optic_axis", 3);
         g.orientation = uniaxial_orientation({a[0], a[1], a[2]});
       }
     } catch (const std::invalid_argument& e) {
-      throw InputError(path, key, gj.dump(), e.what());
+      throw InputError(path, gr.prefix(), gr.node().dump(), e.what());
     }
-    if (const auto t = gr.optional_object("twin")) {
-      g.twinned = true;
-      g.twin_law = "albite";
-      g.twin_trace_rad = radians(t->get_or("trace_deg", 0.0));
-      g.twin_width = t->get_or("width", 0.05, Range::above(0));
-      const glm::dvec3 axis{-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad), 0.0};
-      g.twin_orientation = half_turn(axis) * g.orientation;
-    } else {
-      g.twin_orientation = g.orientation;
-    }
-    g.cos_elong = std::cos(g.elongation_rad);
-    g.sin_elong = std::sin(g.elongation_rad);
-    g.twin_normal = {-std::sin(g.twin_trace_rad), std::cos(g.twin_trace_rad)};
+    if (gr.has("seed"))
+      read_legacy_grain(gr, g);
+    else
+      read_grain(gr, g, m.thickness_um);
+    if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
     m.grains.push_back(std::move(g));
   }
-  m.build_index();
+  m.finish();
   return m;
 }
 
 }  // namespace
+
+SectionMap section_from_json(const nlohmann::json& j, const std::string& origin) {
+  try {
+    return parse_section(j, origin);
+  } catch (const nlohmann::json::exception& e) {  // a value of the wrong type somewhere
+    throw InputError(origin, "", "", std::string("bad thin-section file: ") + e.what());
+  }
+}
 
 std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path) {
   const std::string path = section_path(name_or_path);
@@ -190,12 +549,7 @@ std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path) 
   std::lock_guard<std::mutex> lock(mu);
   auto it = cache.find(path);
   if (it != cache.end()) return it->second;
-  std::shared_ptr<const SectionMap> m;
-  try {
-    m = std::make_shared<const SectionMap>(parse_section(path));
-  } catch (const nlohmann::json::exception& e) {  // a value of the wrong type somewhere
-    throw InputError(path, "", "", std::string("bad thin-section file: ") + e.what());
-  }
+  auto m = std::make_shared<const SectionMap>(section_from_json(read_json_file(path, "thin-section file"), path));
   cache[path] = m;
   return m;
 }

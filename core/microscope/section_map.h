@@ -1,75 +1,125 @@
 #pragma once
-// A thin section as a map of grains (assets/sections/*.json). Each grain owns the points of the
-// field nearest to its seed under its own anisotropic metric (an elongated Voronoi cell, so that
-// plagioclase laths look like laths); a twinned grain alternates lamellae of two orientations
-// related by a 180° rotation about the twin axis (albite law: the normal of the (010) composition
-// plane, whose trace is the lamella direction). Field coordinates: x east, y north, the shorter
-// image side spans −1…1; seeds may lie outside so that a turned stage still shows grains.
+// A thin section as a map of grains (assets/sections/*.json, format in docs/sections.md).
+// Section coordinates are millimetres: origin at the section centre, x east, y north at stage 0°.
+//
+// Each grain is the central section of its crystal's shape ellipsoid (built from the mineral's
+// habit: prismatic along [uvw], tabular on (hkl), else equant) cut by the section plane, and owns
+// the points where its power distance to that ellipse is smallest (an anisotropic power diagram:
+// near-straight boundaries, each grain roughly filling its ellipse). Inside a grain: growth zones (one optical domain each), twin
+// individuals on the trace of the twin plane (only where that plane is steep enough to show) and
+// cleavage cracks along the traces of the cleavage planes, filled with mounting medium.
+//
+// Optical domains: 0 the slide beyond the section's extent, 1 the mounting medium in cracks (both
+// without a crystal), then per grain zones × twin individuals.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/crystal/crystal.h"
 
 namespace pmsim {
 
-struct SectionGrain {
-  std::string mineral;
+// A growth zone: the part of its grain whose normalised ellipse radius is ≤ outer_fraction
+// (and > the previous zone's); the outermost zone takes the rest of the cell.
+struct SectionZone {
+  std::string mineral;  // with composition, e.g. "plagioclase:An55"
   const Crystal* crystal = nullptr;
-  glm::dmat3 orientation{1.0};  // columns: crystal X, Y, Z in the sample frame
-  glm::dvec2 seed{0.0};
-  double elongation = 1.0;      // cell length / width
-  double elongation_rad = 0.0;  // direction of the long side
-  double weight = 1.0;          // larger: bigger cell
-  bool twinned = false;
-  std::string twin_law;              // "albite", … (empty when untwinned)
-  double twin_trace_rad = 0.0;       // direction of the lamella traces
-  double twin_width = 0.05;          // lamella width (field units)
-  glm::dmat3 twin_orientation{1.0};  // orientation of the odd lamellae
-  // Derived once at load (the map lookup runs per sub-pixel).
-  double cos_elong = 1.0, sin_elong = 0.0;
-  glm::dvec2 twin_normal{0.0, 1.0};
+  glm::dmat3 orientation{1.0};       // indicatrix columns X, Y, Z in the section frame
+  glm::dmat3 twin_orientation{1.0};  // the same for the twin individual (= orientation untwinned)
+  double outer_fraction = 1.0;
+};
+
+// A family of parallel cleavage cracks in a grain (the trace of one cleavage plane).
+struct CleavageCracks {
+  std::string plane;         // "(110)"
+  double trace_rad = 0.0;    // direction of the trace, counter-clockwise from +x
+  glm::dvec2 normal{0, 1};   // unit normal of the trace in the section
+  double spacing_mm = 0.05;  // mean distance between cracks
+};
+
+struct SectionGrain {
+  std::string mineral;  // with composition text
+  const Crystal* crystal = nullptr;
+  glm::dmat3 orientation{1.0};  // indicatrix columns X, Y, Z in the section frame (of zone 0)
+  // Crystal Cartesian frame (lattice.h) columns in the section frame, when the mineral has
+  // crystallography and the file gives euler_deg.
+  std::optional<glm::dmat3> lattice_to_section;
+
+  glm::dvec2 centre_mm{0.0};
+  // The grain's ellipse in the section: x·metric·x = 1 on its outline (mm⁻²; symmetric 2×2 as
+  // (xx, xy, yy)). semi_major_mm / semi_minor_mm and elongation_rad (direction of the major
+  // axis, counter-clockwise from +x) are its principal form.
+  double metric_xx = 1.0, metric_xy = 0.0, metric_yy = 1.0;
+  double semi_major_mm = 1.0, semi_minor_mm = 1.0, elongation_rad = 0.0;
+  bool elongated = false;  // the habit shows in this section (aspect > 1 + 1e-6)
+  // The tiling distance is cell_scale·(x·metric·x − cell_offset) (section_map.cpp).
+  double cell_scale = 1.0, cell_offset = 0.0;
+
+  bool twinned = false;  // the file asks for a twin and its plane is steep enough to show
+  std::string twin_law;  // as named in the mineral file ("albite", ...); empty when untwinned
+  glm::dmat3 twin_orientation{1.0};  // orientation of the twin individual (zone 0)
+  double twin_trace_rad = 0.0;       // direction of the composition-plane trace
+  double lamella_mm = 0.0;           // lamella width; 0: a simple twin (one composition plane)
+  glm::dvec2 twin_normal{0.0, 1.0};  // unit normal of the trace in the section
+
+  std::vector<SectionZone> zones;  // inner to outer, at least one
+  std::vector<CleavageCracks> cracks;
+  int first_domain = 2;  // domains first_domain … first_domain + zones·(twinned ? 2 : 1) − 1
 };
 
 class SectionMap {
  public:
+  static constexpr int kSlideDomain = 0;
+  static constexpr int kMediumDomain = 1;
+
   std::string name, source, path;
   double thickness_um = 30.0;
   std::vector<SectionGrain> grains;
   // The section's extent (centred on the origin, mm); beyond it the field shows the slide.
   double width_mm = 4.0, height_mm = 4.0;
+  // Width of a cleavage crack (mm): thin dark lines at 40×, sub-pixel at 4×.
+  double crack_width_mm = 0.003;
 
   // Ground-truth label of a domain: 0 for the mounting medium or the slide, k ≥ 1 for grain k
   // (grains[k − 1]: file order, so the same k in every render of the same section).
-  int grain_label(int domain) const { return domain / 2 + 1; }
+  int grain_label(int domain) const { return domain < 2 ? 0 : domain_grain_[domain] + 1; }
   const SectionGrain& grain_by_label(int k) const { return grains[k - 1]; }
 
-  // Optical domain under a sample-frame point: 2·grain + (1 for an odd twin lamella).
-  int domain_at(const glm::dvec2& p) const;
-  int domain_count() const { return 2 * static_cast<int>(grains.size()); }
-  const SectionGrain& grain_of_domain(int d) const { return grains[d / 2]; }
-  const glm::dmat3& orientation_of_domain(int d) const {
-    const SectionGrain& g = grains[d / 2];
-    return (d & 1) ? g.twin_orientation : g.orientation;
-  }
-  // Builds the lookup grid domain_at uses (load_section calls it; a map whose grains changed
-  // since falls back to testing every grain). Same results as the exhaustive search.
-  void build_index();
+  // Optical domain under a section point (mm).
+  int domain_at(const glm::dvec2& p_mm) const;
+  int domain_count() const { return static_cast<int>(domain_grain_.size()); }
+  // Crystal (nullptr for slide and medium), orientation and mineral name of a domain.
+  const Crystal* crystal_of_domain(int d) const;
+  const glm::dmat3& orientation_of_domain(int d) const;
+  const std::string& mineral_of_domain(int d) const;
+
+  // Assigns the domains of every grain and builds the lookup grid domain_at uses (parsing calls
+  // it; call it again after changing grains). Results equal the exhaustive search's.
+  void finish();
+  // The grain whose cell contains p, by testing every grain (what the grid must reproduce).
+  int nearest_grain_exhaustive(const glm::dvec2& p_mm) const;
 
  private:
-  int nearest_grain(const glm::dvec2& p) const;
-  // Grid over [−kIndexHalf, kIndexHalf]² with, per cell, the grains that can be nearest there.
-  static constexpr int kIndexCells = 64;
-  static constexpr double kIndexHalf = 2.0;
+  int nearest_grain(const glm::dvec2& p_mm) const;
+  int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
+
+  std::vector<int> domain_grain_;  // per domain: grain index, −1 for slide and medium
+  // Grid over the section's extent; per cell the grains that can be nearest in it, in index order.
+  int cells_x_ = 0, cells_y_ = 0;
+  double cell_mm_ = 1.0;
   std::vector<int> cell_start_, cell_grains_;
-  std::size_t indexed_grains_ = 0;
 };
 
-// Loads (once, cached by resolved path) a section file; throws InputError naming file, key and
-// value on bad content or an unknown mineral.
+// Builds a section from a parsed file (`origin` names it in messages); throws InputError naming
+// file, key and value on bad content, an unknown mineral or an unknown twin law.
+SectionMap section_from_json(const nlohmann::json& j, const std::string& origin);
+
+// Loads (once, cached by resolved path) a section file.
 std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path);
 
 }  // namespace pmsim
