@@ -19,6 +19,8 @@
 #include "ui/linear_texture.h"
 #include "ui/shortcuts.h"
 
+struct ImDrawList;
+
 namespace pmsim::ui {
 
 struct AppCounters {
@@ -85,6 +87,9 @@ class App {
   void draw_files_tab();
   void draw_field(Scene& edit, bool& changed);
   void draw_status();
+  void draw_scale_bar(ImDrawList* draw) const;
+  void draw_slide_overview(Scene& edit, bool& changed);
+  void translate_stage(Scene& edit, float from_x, float from_y, float to_x, float to_y) const;
   void draw_chart();
   void draw_teaching();
   void draw_help();
@@ -109,7 +114,10 @@ class App {
   std::string notice_;  // last success message (exports, saves)
   bool help_open_ = false;
   bool reticle_ = true;
+  bool scale_bar_ = true;  // over the field and in field exports (orthoscopic view)
   bool dragging_ = false;
+  bool translating_ = false;  // right button or Shift + left: the stage translates
+  float drag_x_ = 0, drag_y_ = 0;
   double drag_angle_deg_ = 0.0;
   float probe_x_ = 0.5f, probe_y_ = 0.5f;  // cursor on the field, fractions from the top left
   bool probe_hovered_ = false;
