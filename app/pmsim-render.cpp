@@ -1,12 +1,17 @@
 // pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif [--stats FILE.json]
+//              [--labels FILE.png] [--grains FILE.json]
 // Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
-// scene ("type": "scene3d", core/scene3d), and writes the image atomically. Bad input: a message naming file,
-// key and value on stderr, exit code 2, no output file.
+// scene ("type": "scene3d", core/scene3d), and writes the image atomically. A thin section's
+// ground truth goes with it: --labels the grain under every pixel centre (16-bit grey PNG,
+// core/microscope/grain_labels.h), --grains the grains in the image (core/io/grain_report_file.h).
+// Bad input: a message naming file, key and value on stderr, exit code 2, no output file.
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <new>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,10 +24,14 @@
 #include "app/cli_policy.h"
 
 #include "core/io/atomic_file.h"
+#include "core/io/grain_report_file.h"
 #include "core/io/image_file.h"
 #include "core/base/input_error.h"
 #include "core/io/scene_file.h"
+#include "core/microscope/grain_labels.h"
+#include "core/microscope/grain_report.h"
 #include "core/microscope/sample_source.h"
+#include "core/microscope/section_map.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
 
@@ -31,7 +40,7 @@ namespace {
 constexpr const char* kProgram = "pmsim-render";
 
 struct Args {
-  std::string scene_path, out, stats;
+  std::string scene_path, out, stats, labels, grains;
   std::vector<std::string> sets;
 };
 
@@ -49,6 +58,14 @@ Args parse_args(int argc, char** argv) {
       ->type_name("key=value");
   app.add_option("-o,--out", a.out, "output image (.png, .exr or .tif)")->type_name("FILE")->required();
   app.add_option("--stats", a.stats, "write the render statistics as JSON")->type_name("FILE.json");
+  app.add_option("--labels", a.labels,
+                 "thin sections: write the grain under every pixel centre as a 16-bit grey PNG "
+                 "(0 = mounting medium or slide, k = grain k)")
+      ->type_name("FILE.png");
+  app.add_option("--grains", a.grains,
+                 "thin sections: write the grains in the image (mineral, orientation, area, cleavage "
+                 "traces, extinction, retardation, twin) as JSON")
+      ->type_name("FILE.json");
   pmsim::cli::parse_or_exit(app, argc, argv);
   return a;
 }
@@ -114,8 +131,15 @@ int main(int argc, char** argv) {
   if (!(ends_with_ci(args.out, ".png") || ends_with_ci(args.out, ".exr") || ends_with_ci(args.out, ".tif") ||
         ends_with_ci(args.out, ".tiff")))
     usage_error("--out must end in .png, .exr or .tif: '" + args.out + "'");
+  if (!args.labels.empty() && !ends_with_ci(args.labels, ".png"))
+    usage_error("--labels must end in .png: '" + args.labels + "'");
+  const bool ground_truth = !args.labels.empty() || !args.grains.empty();
+  const char* ground_truth_flag = !args.labels.empty() ? "--labels" : "--grains";
   int width = 0, height = 0;
   std::vector<float> rgb;
+  std::vector<std::uint16_t> labels;
+  std::shared_ptr<const pmsim::SectionMap> section;
+  std::optional<pmsim::Scene> microscope_scene;
   nlohmann::json meta, stats;
   try {
     std::vector<std::string> warnings;
@@ -123,6 +147,9 @@ int main(int argc, char** argv) {
         args.scene_path.empty() ? pmsim::asset_dir() + "/scenes/quartz_section_ortho.json" : args.scene_path;
     nlohmann::json j = read_scene_json(path);
     if (is_scene3d(j)) {
+      if (ground_truth)
+        throw pmsim::InputError(path, "type", "scene3d",
+                                std::string(ground_truth_flag) + " needs a microscope scene with sample.type=section");
       for (const std::string& s : args.sets) apply_scene3d_setting(j, s);
       const pmsim::Scene3dDescription desc = pmsim::parse_scene3d(j, path);
       pmsim::Scene3dImage img = pmsim::render_scene3d(desc);
@@ -145,6 +172,11 @@ int main(int argc, char** argv) {
       pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
       for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       pmsim::apply_settings(scene, args.sets);
+      if (ground_truth && !(scene.sample_in && scene.sample.type == pmsim::SampleType::Section))
+        throw pmsim::InputError(path, scene.sample_in ? "sample.type" : "sample.present",
+                                scene.sample_in ? pmsim::scene_to_json(scene)["sample"]["type"].get<std::string>()
+                                                : "false",
+                                std::string(ground_truth_flag) + " needs a thin section on the stage (sample.type=section)");
       const bool tty = ::isatty(STDERR_FILENO);
       pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
           scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);
@@ -153,6 +185,11 @@ int main(int argc, char** argv) {
       height = img.height;
       rgb = std::move(img.rgb);
       meta = pmsim::scene_to_json(scene);
+      if (ground_truth) {
+        section = pmsim::load_section(scene.sample.section);
+        labels = pmsim::grain_label_image(scene, *section);
+        microscope_scene = scene;
+      }
       stats = {
           {"time_ms", img.time_ms},
           {"samples_per_pixel", img.samples_per_pixel},
@@ -174,6 +211,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
+    // The ground truth first, each file atomic, after checking that every output's folder takes
+    // files: a failure leaves no image without its labels (and none of the files half-written).
+    for (const std::string& p : {args.labels, args.grains, args.out}) {
+      if (p.empty()) continue;
+      const std::filesystem::path dir = std::filesystem::absolute(p).parent_path();
+      if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        throw std::runtime_error("cannot write " + p + ": folder " + dir.string() + " is not writable");
+    }
+    if (!args.labels.empty()) pmsim::write_gray16_png(args.labels, width, height, labels, meta);
+    if (!args.grains.empty())
+      pmsim::write_grain_report_file(args.grains, *microscope_scene, *section,
+                                     pmsim::report_grains(*microscope_scene, *section, labels));
     pmsim::write_image(args.out, width, height, rgb, meta);
     if (!args.stats.empty()) pmsim::write_text_atomically(args.stats, stats.dump(2) + "\n");
   } catch (const std::bad_alloc&) {

@@ -24,14 +24,18 @@ std::string lower_extension(const std::string& path) {
 
 // PNG through libpng (no OpenImageIO for the common case: see core/io/image_codec.h), with the
 // text chunks OpenImageIO wrote: "pmsim:scene" and ImageDescription hold the scene JSON.
-void write_png(const std::string& tmp, int width, int height, const std::uint8_t* rgb8,
-               const nlohmann::json& metadata) {
+std::vector<std::pair<std::string, std::string>> png_text(const nlohmann::json& metadata) {
   std::vector<std::pair<std::string, std::string>> text = {{"Software", "pmsim"}};
   if (!metadata.is_null()) {
     text.emplace_back("pmsim:scene", metadata.dump());
     text.emplace_back("ImageDescription", metadata.dump());
   }
-  write_bytes_checked(tmp, encode_png_rgb8(width, height, rgb8, text));
+  return text;
+}
+
+void write_png(const std::string& tmp, int width, int height, const std::uint8_t* rgb8,
+               const nlohmann::json& metadata) {
+  write_bytes_checked(tmp, encode_png_rgb8(width, height, rgb8, png_text(metadata)));
 }
 
 std::string metadata_text(const nlohmann::json& metadata) {
@@ -76,6 +80,17 @@ void write_image_rgb8(const std::string& path, int width, int height, const std:
       write_png(tmp, width, height, rgb8.data(), metadata);
     else
       oiio_codec().write(tmp, width, height, false, rgb8.data(), metadata_text(metadata));
+  });
+}
+
+void write_gray16_png(const std::string& path, int width, int height, const std::vector<std::uint16_t>& values,
+                      const nlohmann::json& metadata) {
+  if (width <= 0 || height <= 0 || values.size() != static_cast<std::size_t>(width) * height)
+    throw std::runtime_error("cannot write " + path + ": image size does not match its pixels");
+  if (lower_extension(path) != ".png")
+    throw std::runtime_error("cannot write " + path + ": a 16-bit grey image must be a .png");
+  write_atomically(path, [&](const std::string& tmp) {
+    write_bytes_checked(tmp, encode_png_gray16(width, height, values.data(), png_text(metadata)));
   });
 }
 

@@ -120,6 +120,10 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.analyzer_in ? "in" : "out"; }},
       {"stage_deg", [](Scene& s, const json& v) { s.stage_deg = as_number(v); },
        [](const Scene& s) -> json { return s.stage_deg; }},
+      {"stage.x_mm", [](Scene& s, const json& v) { s.stage.x_mm = as_number(v); },
+       [](const Scene& s) -> json { return s.stage.x_mm; }},
+      {"stage.y_mm", [](Scene& s, const json& v) { s.stage.y_mm = as_number(v); },
+       [](const Scene& s) -> json { return s.stage.y_mm; }},
       {"bertrand", [](Scene& s, const json& v) { s.bertrand_in = as_in_out(v); },
        [](const Scene& s) -> json { return s.bertrand_in ? "in" : "out"; }},
       {"illuminant",
@@ -131,6 +135,8 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.objective.magnification; }},
       {"objective.na", [](Scene& s, const json& v) { s.objective.na = as_number(v); },
        [](const Scene& s) -> json { return s.objective.na; }},
+      {"eyepiece.field_number_mm", [](Scene& s, const json& v) { s.eyepiece.field_number_mm = as_number(v); },
+       [](const Scene& s) -> json { return s.eyepiece.field_number_mm; }},
       {"condenser.na", [](Scene& s, const json& v) { s.condenser.na = as_number(v); },
        [](const Scene& s) -> json { return s.condenser.na; }},
       {"sample.present", [](Scene& s, const json& v) { s.sample_in = as_bool(v); },
@@ -216,7 +222,8 @@ const Key* find_key(std::string_view path) {
 
 // The groups of dot paths: a value that is not an object there is a wrong type, not an unknown key.
 bool is_group(std::string_view key) {
-  return key == "objective" || key == "condenser" || key == "sample" || key == "render" || key == "optics";
+  return key == "objective" || key == "eyepiece" || key == "stage" || key == "condenser" || key == "sample" ||
+         key == "render" || key == "optics";
 }
 
 // Keys that document a file rather than set anything.

@@ -94,11 +94,10 @@ int domain_at_image_point(const EvaluationPlan& plan, double x_frac, double y_fr
   if (sc.mode == ViewMode::Cono && sc.bertrand_in) {
     glm::dvec3 k;
     if (!bfp_direction(sc, f, k)) return -1;
-    const glm::dvec2 c = sample_from_field({0.0, 0.0}, sc.stage_deg);
-    return plan.section() ? plan.section()->domain_at(c) : 0;
+    // The figure is that of the grain under the crosshair.
+    return plan.section() ? plan.section()->domain_at(FieldToSection(sc)({0.0, 0.0})) : 0;
   }
-  const glm::dvec2 p = sample_from_field(f, sc.stage_deg);
-  return (plan.section() && sc.sample_in) ? plan.section()->domain_at(p) : 0;
+  return (plan.section() && sc.sample_in) ? plan.section()->domain_at(FieldToSection(sc)(f)) : 0;
 }
 
 }  // namespace pmsim

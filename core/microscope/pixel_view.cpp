@@ -41,7 +41,8 @@ class FieldUnits {
         is_wedge_(scene.sample_in && scene.sample.type == SampleType::Wedge),
         wedge_steps_(scene.mode == ViewMode::Cono ? 256
                                                   : 2 * std::max(scene.render.width, scene.render.height)),
-        to_sample_(scene.stage_deg) {}
+        to_sample_(scene.stage_deg),
+        to_section_(scene) {}
 
   std::vector<EvalUnit> units() const {
     std::vector<EvalUnit> out;
@@ -57,18 +58,19 @@ class FieldUnits {
     return out;
   }
 
-  // Adds the units field point f (weight w) shows: its domain, or the two thickness steps of a
-  // wedge around it, linearly weighted.
+  // Adds the units field point f (weight w) shows: its domain (a thin section's at the section
+  // point in mm), or the two thickness steps of a wedge around it, linearly weighted. Plates and
+  // wedges fill the field whatever the magnification.
   void add_field_point(RefBuilder& rb, const glm::dvec2& f, float w) const {
-    const glm::dvec2 p = to_sample_(f);
     if (is_wedge_) {
+      const glm::dvec2 p = to_sample_(f);
       const double pos = wedge_thickness_um(scene_, p) / scene_.sample.thickness_um * (wedge_steps_ - 1);
       const int i0 = std::min(static_cast<int>(pos), wedge_steps_ - 2);
       const float frac = static_cast<float>(pos - i0);
       rb.add(i0, w * (1 - frac));
       rb.add(i0 + 1, w * frac);
     } else {
-      rb.add(domains_.domain_at_sample(p), w);
+      rb.add(domains_.domain_at_sample(to_section_(f)), w);
     }
   }
 
@@ -78,6 +80,7 @@ class FieldUnits {
   bool is_wedge_;
   int wedge_steps_;
   StageToSample to_sample_;
+  FieldToSection to_section_;
 };
 
 }  // namespace
@@ -98,10 +101,12 @@ std::optional<PixelView> conoscopic_figure_view(const Scene& scene, const Optica
   PixelView view;
   view.kind = ViewKind::ConoscopicFigure;
   view.pixel_offset.assign(static_cast<std::size_t>(W) * H + 1, 0);
-  const glm::dvec2 centre = sample_from_field({0.0, 0.0}, scene.stage_deg);
-  const int dom = domains.domain_at_sample(centre);
+  // The figure of the grain under the crosshair (a section's point at stage.x_mm, stage.y_mm), or
+  // of the wedge's thickness at the field centre.
+  const int dom = domains.domain_at_sample(FieldToSection(scene)({0.0, 0.0}));
   const bool is_wedge = scene.sample_in && scene.sample.type == SampleType::Wedge;
-  const double d = is_wedge ? wedge_thickness_um(scene, centre) : domains.domains[dom].thickness_um;
+  const double d = is_wedge ? wedge_thickness_um(scene, sample_from_field({0.0, 0.0}, scene.stage_deg))
+                            : domains.domains[dom].thickness_um;
   // Directions per pixel in parallel (rows), then numbered in order.
   std::vector<glm::dvec3> k_px(static_cast<std::size_t>(W) * H);
   std::vector<char> lit_px(k_px.size());
@@ -181,14 +186,14 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
   const bool section_map = on_stage && type == SampleType::Section && n > 1;
   std::vector<int> centre_domain;
   if (section_map) {
-    const StageToSample to_sample(scene.stage_deg);
+    const FieldToSection to_section(scene);
     centre_domain.resize(static_cast<std::size_t>(W) * H);
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
       if (cancelled(cancel)) return;
       for (int y = r.begin(); y != r.end(); ++y)
         for (int x = 0; x < W; ++x)
           centre_domain[static_cast<std::size_t>(y) * W + x] =
-              domains.domain_at_sample(to_sample(field_from_pixel(W, H, x + 0.5, y + 0.5)));
+              domains.domain_at_sample(to_section(field_from_pixel(W, H, x + 0.5, y + 0.5)));
     });
     if (cancelled(cancel)) return std::nullopt;
   }

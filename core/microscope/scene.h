@@ -33,6 +33,21 @@ struct ObjectiveSettings {
   double na = 0.25;             // objective.na
 };
 
+// The eyepiece's field number: the diameter (mm) of its field stop, i.e. of the field seen in the
+// intermediate image plane. At the specimen the field of view is field_number_mm / magnification
+// (core/microscope/view_geometry.h).
+struct EyepieceSettings {
+  double field_number_mm = 20.0;  // eyepiece.field_number_mm
+};
+
+// The mechanical stage: the point of the thin section under the crosshair, in section
+// coordinates (mm, origin at the section's centre, x east, y north at stage 0°). The rotating
+// stage (stage_deg) turns the section about that point.
+struct StageSettings {
+  double x_mm = 0.0;  // stage.x_mm
+  double y_mm = 0.0;  // stage.y_mm
+};
+
 struct CondenserSettings {
   double na = 0.9;  // condenser.na (the cone that lights the conoscopic figure)
 };
@@ -83,7 +98,9 @@ struct Scene {
   double stage_deg = 0.0;                   // stage_deg
   bool bertrand_in = false;                 // bertrand: in|out
   Illuminant illuminant = Illuminant::D65;  // illuminant
+  StageSettings stage;
   ObjectiveSettings objective;
+  EyepieceSettings eyepiece;
   CondenserSettings condenser;
   SampleSettings sample;
   bool sample_in = true;                        // sample.present: false = empty stage

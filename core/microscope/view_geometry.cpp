@@ -21,6 +21,21 @@ StageToSample::StageToSample(double stage_deg) {
 
 glm::dvec2 sample_from_field(const glm::dvec2& f, double stage_deg) { return StageToSample(stage_deg)(f); }
 
+double field_of_view_mm(const Scene& scene) {
+  return scene.eyepiece.field_number_mm / scene.objective.magnification;
+}
+
+double mm_per_pixel(const Scene& scene, int width, int height) {
+  return field_of_view_mm(scene) / std::min(width, height);
+}
+
+FieldToSection::FieldToSection(const Scene& scene)
+    : rotate(scene.stage_deg), half_fov_mm(0.5 * field_of_view_mm(scene)), centre_mm(scene.stage.x_mm, scene.stage.y_mm) {}
+
+glm::dvec2 section_point_from_pixel(const Scene& scene, int width, int height, double px, double py) {
+  return FieldToSection(scene)(field_from_pixel(width, height, px, py));
+}
+
 bool bfp_direction(const Scene& scene, const glm::dvec2& f, glm::dvec3& k_air) {
   const double rho = std::sqrt(f.x * f.x + f.y * f.y);  // field coordinates are O(1)
   if (!bfp_lit(scene, rho)) return false;

@@ -19,6 +19,30 @@ struct StageToSample {
   double c, s;
 };
 
+// Thin sections at physical scale (docs/conventions.md, "Section coordinates"). The diameter of
+// the field of view at the specimen is the eyepiece's field number over the objective's
+// magnification (the field stop sits in the intermediate image, magnified M× from the specimen);
+// the shorter image side spans it.
+double field_of_view_mm(const Scene& scene);
+// Millimetres of section per pixel of a width × height image: field_of_view_mm / min(width, height).
+double mm_per_pixel(const Scene& scene, int width, int height);
+// The section point (mm, section coordinates: origin at the section's centre, x east, y north at
+// stage 0°) a pixel position shows in orthoscopic view (px to the right, py down, continuous:
+// pixel centres at i + 0.5): p = (stage.x_mm, stage.y_mm) + R(−stage_deg)·(f·FOV/2), f the field
+// point — the stage turns the section about the point under the crosshair.
+glm::dvec2 section_point_from_pixel(const Scene& scene, int width, int height, double px, double py);
+// The same map from a field point, with the constants computed once (per-pixel loops).
+struct FieldToSection {
+  explicit FieldToSection(const Scene& scene);
+  glm::dvec2 operator()(const glm::dvec2& f) const {
+    const glm::dvec2 g = f * half_fov_mm;
+    return centre_mm + rotate(g);
+  }
+  StageToSample rotate;
+  double half_fov_mm;
+  glm::dvec2 centre_mm;  // stage.x_mm, stage.y_mm: the point under the crosshair
+};
+
 // Conoscopic (Bertrand lens in): the direction in air of the light that reaches back-focal-plane
 // point f: sin θ_air = |f|·objective.na, azimuth of f. False outside the disk or beyond the
 // condenser NA (unlit).

@@ -1,0 +1,141 @@
+#include "core/microscope/grain_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/matrix.hpp>
+
+#include "core/base/input_error.h"
+#include "core/base/units.h"
+#include "core/crystal/euler_angles.h"
+#include "core/crystal/mineral_crystallography.h"
+#include "core/microscope/grain_labels.h"
+
+namespace pmsim {
+
+namespace {
+
+constexpr glm::dvec3 kSectionNormal{0.0, 0.0, 1.0};
+
+// [0, 180): a line's angle.
+double line_deg(double a) {
+  double r = std::fmod(a, 180.0);
+  if (r < 0) r += 180.0;
+  return r >= 180.0 ? r - 180.0 : r;
+}
+
+// Image angle of a line lying in the section (section frame, z ≈ 0).
+double image_angle_deg(const glm::dvec3& t, double stage_deg) {
+  return line_deg(std::atan2(t.y, t.x) * 180.0 / kPi + stage_deg);
+}
+
+// The stage angles in [0, 180) that put a vibration direction on the polarizer: the fast
+// direction's image angle φ_fast + θ ≡ polarizer (mod 90°), since the slow one is ⟂ it.
+std::vector<double> extinction_stages(const SectionOptics& s, double polarizer_deg) {
+  if (s.circular) return {};
+  const double fast_section_deg = std::atan2(s.fast.y, s.fast.x) * 180.0 / kPi;
+  double t = std::fmod(polarizer_deg - fast_section_deg, 90.0);
+  if (t < 0) t += 90.0;
+  if (t >= 90.0) t -= 90.0;
+  return {t, t + 90.0};
+}
+
+SectionOptics optics_of(const SectionGrain& g, const glm::dmat3& orientation, double wavelength_nm) {
+  const glm::dvec3 n = g.crystal ? g.crystal->principal_indices(wavelength_nm) : glm::dvec3(1.0);
+  return section_optics(orientation, n, kSectionNormal);
+}
+
+// The library's crystallography when it places the indicatrix in the lattice; else nullptr (a
+// mineral without those data, or a name the library cannot resolve to them).
+const MineralCrystallography* crystallography_of(const std::string& mineral) {
+  try {
+    const MineralCrystallography* m = find_mineral_crystallography(mineral);
+    return m && m->orientation ? m : nullptr;
+  } catch (const InputError&) {
+    return nullptr;
+  }
+}
+
+}  // namespace
+
+const char* sign_of_elongation_name(SignOfElongation s) {
+  switch (s) {
+    case SignOfElongation::LengthSlow: return "length-slow";
+    case SignOfElongation::LengthFast: return "length-fast";
+    case SignOfElongation::Indeterminate: break;
+  }
+  return "indeterminate";
+}
+
+GrainReport report_grain(const Scene& scene, const SectionMap& section, int label) {
+  if (label < 1 || label > static_cast<int>(section.grains.size()))
+    throw std::out_of_range("grain label " + std::to_string(label) + " not in 1…" +
+                            std::to_string(section.grains.size()));
+  const SectionGrain& g = section.grain_by_label(label);
+  GrainReport r;
+  r.id = label;
+  r.mineral = g.mineral;
+  const SectionOptics optics = optics_of(g, g.orientation, kGrainReportIndexWavelengthNm);
+  r.extinction_stage_deg = extinction_stages(optics, scene.polarizer_deg);
+  r.retardation_nm = retardation_nm(optics_of(g, g.orientation, kGrainReportRetardationWavelengthNm),
+                                    scene.sample.thickness_um);
+  // Features in the section frame: the first cleavage trace and the elongation.
+  std::optional<glm::dvec3> first_cleavage, elongation;
+  if (const MineralCrystallography* m = crystallography_of(g.mineral)) {
+    const glm::dmat3 lattice_to_section = g.orientation * glm::transpose(m->indicatrix_axes);
+    try {
+      const EulerBunge e = bunge_from_crystal_to_sample(lattice_to_section);
+      r.euler_deg = std::array<double, 3>{degrees(e.phi1_rad), degrees(e.Phi_rad), degrees(e.phi2_rad)};
+    } catch (const std::invalid_argument&) {
+      // An improper or non-orthonormal grain frame has no Euler angles: left empty.
+    }
+    for (const Cleavage& c : m->cleavage) {
+      try {
+        const glm::dvec3 t = plane_trace(kSectionNormal, lattice_to_section * plane_normal(m->cell, c.plane));
+        if (!first_cleavage) first_cleavage = t;
+        r.cleavage_traces_deg.push_back(image_angle_deg(t, scene.stage_deg));
+      } catch (const std::invalid_argument&) {
+        // The cleavage plane is the section plane: no trace.
+      }
+    }
+    try {
+      if (m->habit.elongation)
+        elongation = projected_direction(kSectionNormal,
+                                         lattice_to_section * lattice_direction(m->cell, *m->habit.elongation));
+      else if (m->habit.tabular)
+        elongation = plane_trace(kSectionNormal, lattice_to_section * plane_normal(m->cell, *m->habit.tabular));
+    } catch (const std::invalid_argument&) {
+      // Seen end-on (elongation along the normal) or flat on the tabular plane: equant in section.
+    }
+  } else if (g.elongation > 1.0) {
+    // No crystallography: the grain's drawn shape (SectionGrain::elongation_rad) is its elongation.
+    elongation = glm::dvec3(std::cos(g.elongation_rad), std::sin(g.elongation_rad), 0.0);
+  }
+  if (elongation) {
+    r.elongation_deg = image_angle_deg(*elongation, scene.stage_deg);
+    const SignOfElongation s = sign_of_elongation(optics, *elongation);
+    if (s != SignOfElongation::Indeterminate) r.sign_of_elongation = s;
+  }
+  const std::optional<glm::dvec3> feature = first_cleavage ? first_cleavage : elongation;
+  if (feature && !optics.circular) r.extinction_angle_deg = extinction_from(optics, *feature).angle_deg;
+  if (g.twinned)
+    r.twin = GrainTwinReport{
+        g.twin_law,
+        extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm), scene.polarizer_deg)};
+  return r;
+}
+
+std::vector<GrainReport> report_grains(const Scene& scene, const SectionMap& section,
+                                       const std::vector<std::uint16_t>& labels) {
+  const std::vector<long long> counts = label_counts(labels, section);
+  std::vector<GrainReport> out;
+  for (std::size_t k = 1; k < counts.size(); ++k)
+    if (counts[k] > 0) {
+      out.push_back(report_grain(scene, section, static_cast<int>(k)));
+      out.back().area_px = counts[k];
+    }
+  return out;
+}
+
+}  // namespace pmsim

@@ -1,0 +1,64 @@
+#pragma once
+// What one grain of a thin section is and shows in the current view, computed from its
+// indicatrix and its crystallography (core/crystal/section_optics.h): the ground truth of
+// pmsim-render --grains and of the app's teaching panel for the grain under the cursor.
+//
+// Frames. The section frame is that of docs/conventions.md (mm, x east, y north, z toward the
+// observer, at stage 0°); section normal +z. A grain's SectionGrain::orientation has the
+// indicatrix X, Y, Z as columns in it; a mineral's crystallography gives them in the crystal
+// Cartesian frame of lattice.h (indicatrix_axes), so lattice_to_section = orientation ·
+// indicatrix_axesᵀ. Image angles are counter-clockwise from image +x at the current stage angle:
+// the stage turns the section by +stage_deg, so image angle = section angle + stage_deg,
+// reduced to [0°, 180°) (lines, not arrows).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/crystal/section_optics.h"
+#include "core/microscope/scene.h"
+#include "core/microscope/section_map.h"
+
+namespace pmsim {
+
+// Indices for the vibration directions and extinction positions: the sodium D line, the
+// wavelength optical-mineralogy tables quote (Nesse 2012 ch. 7). Retardation: at 550 nm, the
+// first-order red of the gypsum plate and the Michel-Lévy chart's reference.
+constexpr double kGrainReportIndexWavelengthNm = 589.3;
+constexpr double kGrainReportRetardationWavelengthNm = 550.0;
+
+struct GrainTwinReport {
+  std::string law;                          // SectionGrain::twin_law
+  std::vector<double> extinction_stage_deg;  // of the twin individual (odd lamellae)
+};
+
+struct GrainReport {
+  int id = 0;            // the grain's label (SectionMap::grain_label)
+  std::string mineral;   // as the section file names it, composition included ("plagioclase:An35")
+  // Bunge (φ1, Φ, φ2) of lattice_to_section, degrees; empty when the mineral has no unit cell and
+  // optical orientation (then no cleavage traces or habit either).
+  std::optional<std::array<double, 3>> euler_deg;
+  long long area_px = 0;  // pixels of the label image with this id (report_grains; 0 from report_grain)
+  std::vector<double> cleavage_traces_deg;  // image angles [0, 180), one per cleavage plane with a trace
+  std::optional<double> elongation_deg;     // image angle [0, 180) of the elongation, if any
+  // Stage angles in [0°, 180°) at which the grain is extinct between crossed polars (a vibration
+  // direction parallel to the polarizer), ascending; empty when it is extinct at every angle
+  // (isotropic, or cut ⟂ an optic axis).
+  std::vector<double> extinction_stage_deg;
+  std::optional<double> extinction_angle_deg;  // [0, 45] to the first cleavage trace, else the elongation
+  std::optional<SignOfElongation> sign_of_elongation;  // empty without an elongation or when indeterminate
+  double retardation_nm = 0.0;  // sample.thickness_um · (n′γ − n′α) at 550 nm
+  std::optional<GrainTwinReport> twin;
+};
+
+// The report of grain `label` (1 … grains.size(); std::out_of_range otherwise) in `scene` (stage
+// angle, polarizer, thickness). area_px is left 0: it is a property of an image.
+GrainReport report_grain(const Scene& scene, const SectionMap& section, int label);
+
+// One report per grain present in the label image (count > 0), ascending id, area_px filled.
+std::vector<GrainReport> report_grains(const Scene& scene, const SectionMap& section,
+                                       const std::vector<std::uint16_t>& labels);
+
+const char* sign_of_elongation_name(SignOfElongation s);  // "length-slow", "length-fast", "indeterminate"
+
+}  // namespace pmsim
