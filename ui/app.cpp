@@ -325,6 +325,7 @@ void App::draw_field(Scene& edit, bool& changed) {
     probe_x_ = std::clamp((m.x - p0.x) / l.field.w, 0.0f, 1.0f);
     probe_y_ = std::clamp((m.y - p0.y) / l.field.h, 0.0f, 1.0f);
     draw->AddCircle(m, 5, IM_COL32(255, 220, 60, 220), 16, 1.5f);
+    draw_grain_overlay(draw, m.x, m.y, 0.18f * r);
   }
 
   // Error banner over the top of the field; the scene behind it is the last good one.
