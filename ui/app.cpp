@@ -14,6 +14,8 @@
 #include "core/base/units.h"  // kPi, radians, degrees
 #include "core/io/scene_file.h"
 #include "core/microscope/scene_check.h"
+#include "core/microscope/view_geometry.h"
+#include "core/render/scale_bar.h"
 #include "ui/asset_lists.h"
 #include "ui/teaching.h"
 
@@ -170,7 +172,14 @@ bool App::export_field(const std::string& path) {
   }
   try {
     make_parent_folder(path);
-    write_image(path, image_.width, image_.height, image_.rgb, scene_to_json(scene_));
+    if (scale_bar_ && scene_.mode == ViewMode::Ortho && !scene_.bertrand_in) {
+      std::vector<float> rgb = image_.rgb;
+      burn_scale_bar(rgb, image_.width, image_.height,
+                     choose_scale_bar(mm_per_pixel(scene_, image_.width, image_.height), image_.width));
+      write_image(path, image_.width, image_.height, rgb, scene_to_json(scene_));
+    } else {
+      write_image(path, image_.width, image_.height, image_.rgb, scene_to_json(scene_));
+    }
   } catch (const std::exception& e) {
     fail(e.what());
     return false;
@@ -271,14 +280,33 @@ void App::draw_field(Scene& edit, bool& changed) {
     draw->AddLine(ImVec2(c.x, c.y - r), ImVec2(c.x, c.y + r), line);
   }
 
-  // Grabbing the stage: dragging around the centre turns it by the angle swept.
+  if (scale_bar_ && scene_.mode == ViewMode::Ortho && !scene_.bertrand_in) draw_scale_bar(draw);
+
+  // Grabbing the stage: dragging around the centre turns it by the angle swept; dragging with the
+  // right button (or Shift + left) translates it, the section point under the cursor staying
+  // under the cursor as on a mechanical stage.
   ImGui::SetCursorScreenPos(p0);
-  ImGui::InvisibleButton("field_stage", ImVec2(l.field.w, l.field.h));
+  ImGui::InvisibleButton("field_stage", ImVec2(l.field.w, l.field.h),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   const ImVec2 m = ImGui::GetIO().MousePos;
   const double mouse_angle_deg = degrees(std::atan2(-(m.y - c.y), m.x - c.x));
+  const bool translate = ImGui::IsMouseDown(ImGuiMouseButton_Right) || ImGui::GetIO().KeyShift;
   if (ImGui::IsItemActivated()) {
-    dragging_ = true;
+    dragging_ = !translate;
+    translating_ = translate;
     drag_angle_deg_ = mouse_angle_deg;
+    drag_x_ = m.x;
+    drag_y_ = m.y;
+  }
+  if (ImGui::IsItemActive() && translating_) {
+    if (m.x != drag_x_ || m.y != drag_y_) {
+      translate_stage(edit, drag_x_, drag_y_, m.x, m.y);
+      changed = true;
+      drag_x_ = m.x;
+      drag_y_ = m.y;
+    }
+  } else {
+    translating_ = false;
   }
   if (ImGui::IsItemActive() && dragging_) {
     double delta = mouse_angle_deg - drag_angle_deg_;
@@ -297,6 +325,7 @@ void App::draw_field(Scene& edit, bool& changed) {
     probe_x_ = std::clamp((m.x - p0.x) / l.field.w, 0.0f, 1.0f);
     probe_y_ = std::clamp((m.y - p0.y) / l.field.h, 0.0f, 1.0f);
     draw->AddCircle(m, 5, IM_COL32(255, 220, 60, 220), 16, 1.5f);
+    draw_grain_overlay(draw, m.x, m.y, 0.18f * r);
   }
 
   // Error banner over the top of the field; the scene behind it is the last good one.
@@ -319,6 +348,35 @@ void App::draw_field(Scene& edit, bool& changed) {
   ImGui::PopStyleVar();
 }
 
+void App::translate_stage(Scene& edit, float from_x, float from_y, float to_x, float to_y) const {
+  // Screen points to image pixels (the field square shows the whole image), then the section
+  // point under each: the stage moves by their difference, so the first stays under the cursor.
+  const Layout& l = layout_;
+  const int w = edit.render.width, h = edit.render.height;
+  auto px = [&](float sx, float sy) {
+    return section_point_from_pixel(edit, w, h, (sx - l.field.x) / l.field.w * w, (sy - l.field.y) / l.field.h * h);
+  };
+  const glm::dvec2 d = px(from_x, from_y) - px(to_x, to_y);
+  edit.stage.x_mm += d.x;
+  edit.stage.y_mm += d.y;
+}
+
+void App::draw_scale_bar(ImDrawList* draw) const {
+  const Layout& l = layout_;
+  const int w = scene_.render.width, h = scene_.render.height;
+  const double mm_per_screen_px = mm_per_pixel(scene_, w, h) * w / l.field.w;
+  const ScaleBar bar = choose_scale_bar(mm_per_screen_px, static_cast<int>(l.field.w));
+  // Inside the circular field stop, low and centred.
+  const float len = static_cast<float>(bar.length_px);
+  const float x0 = l.field.cx() - len / 2, y0 = l.field.cy() + 0.78f * l.field_radius();
+  draw->AddRectFilled(ImVec2(x0 - 1, y0 - 1), ImVec2(x0 + len + 1, y0 + 4), IM_COL32(0, 0, 0, 255));
+  draw->AddRectFilled(ImVec2(x0, y0), ImVec2(x0 + len, y0 + 3), IM_COL32(255, 255, 255, 255));
+  const ImVec2 ts = ImGui::CalcTextSize(bar.label.c_str());
+  const ImVec2 tp(l.field.cx() - ts.x / 2, y0 + 6);
+  draw->AddText(ImVec2(tp.x + 1, tp.y + 1), IM_COL32(0, 0, 0, 255), bar.label.c_str());
+  draw->AddText(tp, IM_COL32(255, 255, 255, 255), bar.label.c_str());
+}
+
 void App::draw_status() {
   const Layout& l = layout_;
   ImGui::SetNextWindowPos(ImVec2(l.status.x, l.status.y));
@@ -333,8 +391,9 @@ void App::draw_status() {
   ImGui::Text("%s  %.1f spp  %d wl  pass %d  %s  %s  %.0f ms", current ? "" : "(previous)",
               im.samples_per_pixel, im.wavelengths, im.passes, err, im.converged ? "converged" : "refining",
               im.time_ms);
-  ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  %s", counters_.fps, counters_.frame_ms,
-              scene_.stage_deg, notice_.c_str());
+  ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  X %.3f mm  Y %.3f mm  field %.2f mm  %s",
+              counters_.fps, counters_.frame_ms, scene_.stage_deg, scene_.stage.x_mm, scene_.stage.y_mm,
+              field_of_view_mm(scene_), notice_.c_str());
   if (ImGui::IsWindowHovered() && !im.model_report.empty()) ImGui::SetTooltip("%s", im.model_report.c_str());
   ImGui::End();
 }
@@ -346,7 +405,8 @@ void App::handle_shortcuts(Scene& edit, bool& changed) {
     if (s.shift != io.KeyShift || s.ctrl != io.KeyCtrl) continue;
     // Turning keys repeat while held, toggles do not (holding A must not flicker the analyzer).
     const bool repeats =
-        s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn || s.action == Action::WedgeOut;
+        s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn || s.action == Action::WedgeOut ||
+        (s.action >= Action::ViewEast && s.action <= Action::ViewSouth);
     if (ImGui::IsKeyPressed(s.key, repeats)) apply_action(s.action, edit, changed);
   }
 }
@@ -382,6 +442,24 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
       break;
     case Action::StageZero:
       edit.stage_deg = 0;
+      change();
+      break;
+    case Action::ViewEast:
+    case Action::ViewWest:
+    case Action::ViewNorth:
+    case Action::ViewSouth: {
+      // A tenth of the field in the image direction of the arrow, whatever the stage angle.
+      const double step = field_of_view_mm(edit) / 10.0;
+      const int k = static_cast<int>(action) - static_cast<int>(Action::ViewEast);
+      const glm::dvec2 image_step = step * glm::dvec2(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0);
+      const glm::dvec2 d = StageToSample(edit.stage_deg)(image_step);
+      edit.stage.x_mm += d.x;
+      edit.stage.y_mm += d.y;
+      change();
+      break;
+    }
+    case Action::StageCentre:
+      edit.stage.x_mm = edit.stage.y_mm = 0.0;
       change();
       break;
     case Action::PolarizerUp:

@@ -12,12 +12,15 @@
 #include <string_view>
 #include <vector>
 
+#include "core/microscope/grain_report.h"
 #include "core/microscope/scene.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/layout.h"
 #include "ui/render_feed.h"
 #include "ui/linear_texture.h"
 #include "ui/shortcuts.h"
+
+struct ImDrawList;
 
 namespace pmsim::ui {
 
@@ -85,8 +88,13 @@ class App {
   void draw_files_tab();
   void draw_field(Scene& edit, bool& changed);
   void draw_status();
+  void draw_scale_bar(ImDrawList* draw) const;
+  void draw_slide_overview(Scene& edit, bool& changed);
+  void translate_stage(Scene& edit, float from_x, float from_y, float to_x, float to_y) const;
   void draw_chart();
   void draw_teaching();
+  void draw_grain_text(const GrainReport& g);
+  void draw_grain_overlay(ImDrawList* draw, float cx, float cy, float len) const;
   void draw_help();
   void handle_shortcuts(Scene& edit, bool& changed);
   void apply_action(Action action, Scene& edit, bool& changed);
@@ -109,7 +117,11 @@ class App {
   std::string notice_;  // last success message (exports, saves)
   bool help_open_ = false;
   bool reticle_ = true;
+  bool scale_bar_ = true;
+  bool grain_overlay_ = true;  // vibration directions and cleavage of the grain at the probe  // over the field and in field exports (orthoscopic view)
   bool dragging_ = false;
+  bool translating_ = false;  // right button or Shift + left: the stage translates
+  float drag_x_ = 0, drag_y_ = 0;
   double drag_angle_deg_ = 0.0;
   float probe_x_ = 0.5f, probe_y_ = 0.5f;  // cursor on the field, fractions from the top left
   bool probe_hovered_ = false;

@@ -1,10 +1,14 @@
 // The left panel: every microscope control, each editing one scene key of `edit`.
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstring>
 
 #include <imgui.h>
 
 #include "core/crystal/crystal.h"
+#include "core/microscope/section_map.h"
+#include "core/microscope/view_geometry.h"
 #include "ui/app.h"
 #include "ui/asset_lists.h"
 
@@ -112,6 +116,11 @@ void App::draw_microscope_tab(Scene& edit, bool& changed) {
   ImGui::Separator();
   ImGui::TextUnformatted("Stage and polars");
   changed |= slider_deg("Stage", edit.stage_deg);
+  // The mechanical stage: the section point under the crosshair (right-drag or Shift-drag on the
+  // field, Ctrl + arrows).
+  const ImGuiInputTextFlags enter_xy = ImGuiInputTextFlags_EnterReturnsTrue;
+  changed |= ImGui::InputDouble("Stage X", &edit.stage.x_mm, 0.1, 1.0, "%.3f mm", enter_xy);
+  changed |= ImGui::InputDouble("Stage Y", &edit.stage.y_mm, 0.1, 1.0, "%.3f mm", enter_xy);
   changed |= slider_deg("Polarizer", edit.polarizer_deg);
   changed |= ImGui::Checkbox("Analyzer in", &edit.analyzer_in);
   ImGui::SameLine();
@@ -144,10 +153,15 @@ void App::draw_microscope_tab(Scene& edit, bool& changed) {
       }
     ImGui::EndCombo();
   }
+  changed |= ImGui::InputDouble("Field number", &edit.eyepiece.field_number_mm, 1.0, 2.0, "%.1f mm",
+                                ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::TextDisabled("field of view %.3f mm (field number / magnification)", field_of_view_mm(edit));
   changed |= slider_double("Condenser NA", edit.condenser.na, 0.05, 1.3, "%.2f");
   changed |= combo_enum("Illuminant", edit.illuminant, {"D65 (daylight)", "A (tungsten)"});
   ImGui::Separator();
   ImGui::Checkbox("Eyepiece crosshair", &reticle_);
+  ImGui::SameLine();
+  ImGui::Checkbox("Scale bar", &scale_bar_);
 }
 
 void App::draw_sample_tab(Scene& edit, bool& changed) {
@@ -170,6 +184,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
       ImGui::EndCombo();
     }
     changed |= slider_double("Thickness", s.thickness_um, 1.0, 100.0, "%.1f um");
+    draw_slide_overview(edit, changed);
     return;
   }
 
@@ -236,6 +251,43 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     changed |= vec3_input("X (n alpha)", s.x_axis);
     changed |= vec3_input("Z (n gamma)", s.z_axis);
   }
+}
+
+void App::draw_slide_overview(Scene& edit, bool& changed) {
+  // The slide seen from above at stage 0°: the section's extent, and the field of view as a circle
+  // around the point under the crosshair. A click moves the stage there.
+  std::shared_ptr<const SectionMap> map;
+  try {
+    map = load_section(edit.sample.section);
+  } catch (const std::exception&) {
+    return;  // reported by the scene check on commit
+  }
+  ImGui::TextUnformatted("Slide (click to move the stage)");
+  const float avail = ImGui::GetContentRegionAvail().x;
+  const double margin_mm = 0.1 * std::max(map->width_mm, map->height_mm);
+  const double span_w = map->width_mm + 2 * margin_mm, span_h = map->height_mm + 2 * margin_mm;
+  const float scale = static_cast<float>(std::min(avail / span_w, 160.0 / span_h));
+  const ImVec2 size(static_cast<float>(span_w * scale), static_cast<float>(span_h * scale));
+  const ImVec2 o = ImGui::GetCursorScreenPos();
+  const ImVec2 centre(o.x + size.x / 2, o.y + size.y / 2);
+  auto to_screen = [&](double x_mm, double y_mm) {
+    return ImVec2(centre.x + static_cast<float>(x_mm * scale), centre.y - static_cast<float>(y_mm * scale));
+  };
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(o, ImVec2(o.x + size.x, o.y + size.y), IM_COL32(60, 62, 66, 255));  // the slide
+  draw->AddRectFilled(to_screen(-map->width_mm / 2, map->height_mm / 2), to_screen(map->width_mm / 2, -map->height_mm / 2),
+                      IM_COL32(150, 140, 120, 255));  // the section under its cover glass
+  const ImVec2 f = to_screen(edit.stage.x_mm, edit.stage.y_mm);
+  draw->AddCircle(f, std::max(2.0f, static_cast<float>(field_of_view_mm(edit) / 2 * scale)), IM_COL32(255, 220, 60, 255),
+                  32, 1.5f);
+  ImGui::InvisibleButton("slide_overview", size);
+  if (ImGui::IsItemActive()) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    edit.stage.x_mm = (m.x - centre.x) / scale;
+    edit.stage.y_mm = -(m.y - centre.y) / scale;
+    changed = true;
+  }
+  ImGui::Text("section %.1f x %.1f mm", map->width_mm, map->height_mm);
 }
 
 void App::draw_quality_tab(Scene& edit, bool& changed) {

@@ -19,7 +19,7 @@ struct Arity {
 const std::map<std::string, Arity>& verbs() {
   static const std::map<std::string, Arity> table = {
       {"set", {1, 1}},  {"key", {1, 1}},         {"move", {2, 2}},   {"click", {2, 2}},
-      {"drag", {4, 5}}, {"turn-stage", {1, 2}},  {"probe", {2, 2}},  {"type", {1, 1}},
+      {"drag", {4, 5}}, {"turn-stage", {1, 2}}, {"pan", {2, 3}},  {"probe", {2, 2}},  {"type", {1, 1}},
       {"wait", {1, 2}}, {"screenshot", {1, 1}},  {"export", {1, 1}}, {"save", {1, 1}},
       {"load", {1, 1}}, {"expect-error", {0, 0}}};
   return table;
@@ -73,7 +73,7 @@ std::vector<ScriptCommand> parse_script(const std::string& text, const std::stri
     if (c.verb == "set" && c.args[0].find('=') == std::string::npos)
       throw InputError(file, where, c.args[0], "expected key=value");
     if (c.verb == "wait" && c.args[0] != "converged") number(c, 0, file);
-    if (c.verb == "move" || c.verb == "click" || c.verb == "drag" || c.verb == "turn-stage" ||
+    if (c.verb == "move" || c.verb == "click" || c.verb == "drag" || c.verb == "turn-stage" || c.verb == "pan" ||
         c.verb == "probe")
       for (size_t i = 0; i < c.args.size(); ++i) number(c, i, file);
     if (c.verb == "wait" && c.args.size() == 2) number(c, 1, file);
@@ -169,6 +169,22 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
         step(1);
       }
       driver.inject_mouse(path.back().first, path.back().second, false);
+      step(1);
+    } else if (c.verb == "pan") {
+      // A right-button drag from the field centre by (dx, dy) field widths (screen y down): the
+      // mechanical stage moves the section with the cursor.
+      const Rect& f = app.layout().field;
+      const int n = a.size() > 2 ? std::max(1, static_cast<int>(num(2))) : 10;
+      driver.inject_mouse(f.cx(), f.cy(), false);
+      step(1);
+      for (int k = 0; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        driver.inject_mouse(static_cast<float>(f.cx() + t * num(0) * f.w),
+                            static_cast<float>(f.cy() + t * num(1) * f.h), false, true);
+        step(1);
+      }
+      driver.inject_mouse(static_cast<float>(f.cx() + num(0) * f.w), static_cast<float>(f.cy() + num(1) * f.h),
+                          false);
       step(1);
     } else if (c.verb == "type") {
       driver.inject_text(a[0]);

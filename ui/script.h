@@ -9,6 +9,7 @@
 //   click X Y              left click
 //   drag X0 Y0 X1 Y1 [N]   press at (X0,Y0), move to (X1,Y1) over N frames (default 10), release
 //   turn-stage DEG [N]     drag on the field along an arc about its centre sweeping DEG degrees
+//   pan DX DY [N]          right-button drag from the field centre by (DX, DY) field widths: translates the stage
 //                          (counter-clockwise positive), over N frames (default 12)
 //   probe FX FY            hover the field at fractions (0..1 from its top left)
 //   type TEXT              type text into the focused text field

@@ -3,10 +3,12 @@
 // only when the scene or the probed point changes.
 #include <cstdint>
 #include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/microscope/figure_info.h"
+#include "core/microscope/grain_report.h"
 #include "core/microscope/pixel_probe.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/spectrum/illuminant.h"
@@ -18,8 +20,10 @@ struct App::Teaching {
   // The probe runs off the UI thread (the first probe of a thin section loads its map).
   struct ProbeResult {
     PixelProbe probe;
+    std::optional<GrainReport> grain;  // the grain under the point (orthoscopic thin sections)
     std::string error;
   };
+  std::optional<GrainReport> grain;
   PixelProbe probe;
   std::string probe_error;
   std::uint64_t probe_generation = ~0ull;  // what `probe` (or the job in flight) was asked for

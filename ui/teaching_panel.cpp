@@ -1,10 +1,13 @@
 // The right panel and the chart under the field: what a student reads next to the image.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
 
+#include "core/base/units.h"
+#include "core/microscope/grain_probe.h"
 #include "core/render/michel_levy_chart.h"
 
 #include "ui/app.h"
@@ -155,6 +158,60 @@ void App::draw_chart() {
   ImGui::PopStyleVar();
 }
 
+void App::draw_grain_text(const GrainReport& g) {
+  // What a student measures on the grain: all computed by core (report_grain) from the grain's
+  // indicatrix and crystallography at the current stage angle.
+  ImGui::Text("Grain %d      %s", g.id, g.mineral.c_str());
+  if (g.extinction_angle_deg)
+    ImGui::Text("Extinction    %.1f deg to its %s", *g.extinction_angle_deg,
+                g.cleavage_traces_deg.empty() ? "elongation" : "cleavage");
+  else if (g.extinction_stage_deg.empty())
+    ImGui::TextUnformatted("Extinction    at every stage angle (isotropic or cut perp. to an optic axis)");
+  if (!g.extinction_stage_deg.empty())
+    ImGui::Text("Extinct at    stage %.1f and %.1f deg", g.extinction_stage_deg[0], g.extinction_stage_deg[1]);
+  ImGui::Text("Elongation    %s", g.sign_of_elongation ? sign_of_elongation_name(*g.sign_of_elongation)
+                                                        : (g.elongation_deg ? "indeterminate" : "none (equant)"));
+  if (!g.cleavage_traces_deg.empty()) {
+    std::string traces;
+    for (double c : g.cleavage_traces_deg) {
+      char b[16];
+      std::snprintf(b, sizeof b, "%s%.0f", traces.empty() ? "" : ", ", c);
+      traces += b;
+    }
+    ImGui::Text("Cleavage      traces at %s deg", traces.c_str());
+    if (g.cleavage_traces_deg.size() >= 2) {
+      double a = std::fabs(g.cleavage_traces_deg[0] - g.cleavage_traces_deg[1]);
+      a = std::min(a, 180.0 - a);
+      ImGui::Text("              between them %.0f / %.0f deg", a, 180.0 - a);
+    }
+  } else {
+    ImGui::TextUnformatted("Cleavage      no trace in this section");
+  }
+  if (g.twin)
+    ImGui::Text("Twinned       %s law (twin extinct at %.1f deg)", g.twin->law.c_str(),
+                g.twin->extinction_stage_deg.empty() ? 0.0 : g.twin->extinction_stage_deg[0]);
+  ImGui::Checkbox("Show vibration directions and cleavage", &grain_overlay_);
+}
+
+void App::draw_grain_overlay(ImDrawList* draw, float cx, float cy, float len) const {
+  // Lines through the probed point at the image angles of the report (counter-clockwise from +x,
+  // screen y down).
+  const auto& g = teaching_->grain;
+  if (!g || !grain_overlay_) return;
+  auto line = [&](double deg, float half, ImU32 col, float width, const char* label) {
+    const float dx = static_cast<float>(std::cos(radians(deg))) * half;
+    const float dy = -static_cast<float>(std::sin(radians(deg))) * half;
+    draw->AddLine(ImVec2(cx - dx, cy - dy), ImVec2(cx + dx, cy + dy), IM_COL32(0, 0, 0, 200), width + 2);
+    draw->AddLine(ImVec2(cx - dx, cy - dy), ImVec2(cx + dx, cy + dy), col, width);
+    if (label) draw->AddText(ImVec2(cx + dx + 3, cy + dy - 7), col, label);
+  };
+  for (double c : g->cleavage_traces_deg) line(c, len * 1.2f, IM_COL32(120, 200, 255, 230), 1.0f, nullptr);
+  if (g->slow_vibration_deg) {
+    line(*g->slow_vibration_deg, len, IM_COL32(255, 80, 60, 255), 2.0f, "slow");
+    line(*g->slow_vibration_deg + 90.0, len * 0.6f, IM_COL32(255, 255, 255, 255), 2.0f, "fast");
+  }
+}
+
 void App::draw_teaching() {
   const Layout& l = layout_;
   ImGui::SetNextWindowPos(ImVec2(l.teaching.x, l.teaching.y));
@@ -167,6 +224,7 @@ void App::draw_teaching() {
   if (t.probe_job.valid() && t.probe_job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     Teaching::ProbeResult r = t.probe_job.get();
     t.probe = std::move(r.probe);
+    t.grain = std::move(r.grain);
     t.probe_error = std::move(r.error);
     t.spectrum.assign(t.probe.transmission.begin(), t.probe.transmission.end());
   }
@@ -179,6 +237,7 @@ void App::draw_teaching() {
       Teaching::ProbeResult r;
       try {
         r.probe = probe_pixel(scene, x, y);
+        r.grain = grain_at_image_point(scene, x, y);
       } catch (const std::exception& e) {
         r.error = e.what();
       }
@@ -196,6 +255,7 @@ void App::draw_teaching() {
     ImGui::Text("Thickness     %.1f um", p.thickness_um);
     ImGui::Text("Retardation   %.0f nm", p.retardation_nm);
     ImGui::Text("Order         %.2f (order %d)", p.order, static_cast<int>(p.order) + 1);
+    if (t.grain) draw_grain_text(*t.grain);
     ImGui::TextUnformatted("Transmitted spectrum, 380-780 nm");
     const float top =
         std::max(1.0f, t.spectrum.empty() ? 1.0f : *std::max_element(t.spectrum.begin(), t.spectrum.end()));

@@ -77,11 +77,12 @@ void UiDriver::shutdown_imgui() {
 
 UiDriver::~UiDriver() = default;
 
-void UiDriver::inject_mouse(float x, float y, bool left_down) {
+void UiDriver::inject_mouse(float x, float y, bool left_down, bool right_down) {
   mouse_injected_ = true;
   mouse_x_ = x;
   mouse_y_ = y;
   mouse_down_ = left_down;
+  mouse_right_down_ = right_down;
 }
 
 void UiDriver::release_mouse() { mouse_injected_ = false; }
@@ -99,6 +100,7 @@ void UiDriver::apply_injected_input() {
   if (mouse_injected_) {
     io.MousePos = ImVec2(mouse_x_, mouse_y_);
     io.MouseDown[0] = mouse_down_;
+    io.MouseDown[1] = mouse_right_down_;
   }
   // Keys pressed last frame are released now (a press is one frame down, as a quick tap).
   for (int k : keys_down_) io.KeysDown[k] = false;

@@ -45,7 +45,7 @@ class UiDriver {
   const FrameTimes& frame_times() const { return times_; }
 
   // Injected input, applied from the next frame on. A key press lasts one frame.
-  void inject_mouse(float x, float y, bool left_down);
+  void inject_mouse(float x, float y, bool left_down, bool right_down = false);
   void release_mouse();  // stop overriding the mouse (window driver: back to the real one)
   void inject_key(int glfw_key, bool shift, bool ctrl);
   void inject_text(const std::string& utf8);
@@ -73,6 +73,7 @@ class UiDriver {
   bool mouse_injected_ = false;
   float mouse_x_ = 0, mouse_y_ = 0;
   bool mouse_down_ = false;
+  bool mouse_right_down_ = false;
   std::vector<int> keys_down_;     // held during the current frame
   std::vector<int> keys_pending_;  // pressed on the next frame
   bool shift_ = false, ctrl_ = false;

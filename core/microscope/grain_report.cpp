@@ -78,6 +78,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   r.mineral = g.mineral;
   const SectionOptics optics = optics_of(g, g.orientation, kGrainReportIndexWavelengthNm);
   r.extinction_stage_deg = extinction_stages(optics, scene.polarizer_deg);
+  if (!optics.circular) r.slow_vibration_deg = image_angle_deg(optics.slow, scene.stage_deg);
   r.retardation_nm = retardation_nm(optics_of(g, g.orientation, kGrainReportRetardationWavelengthNm),
                                     scene.sample.thickness_um);
   // Features in the section frame: the first cleavage trace and the elongation.

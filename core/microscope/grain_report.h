@@ -48,6 +48,9 @@ struct GrainReport {
   std::optional<double> extinction_angle_deg;  // [0, 45] to the first cleavage trace, else the elongation
   std::optional<SignOfElongation> sign_of_elongation;  // empty without an elongation or when indeterminate
   double retardation_nm = 0.0;  // sample.thickness_um · (n′γ − n′α) at 550 nm
+  // Image angle [0, 180) of the slow vibration direction (n′γ; the fast one is ⟂ it); empty in a
+  // circular section. What the app's overlay draws.
+  std::optional<double> slow_vibration_deg;
   std::optional<GrainTwinReport> twin;
 };
 
