@@ -21,7 +21,7 @@ import random
 # crystallography (habit, albite twins) and metamorphic minerals (almandine, microcline, ...) in
 # stages. Until it has them, FULL_LIBRARY = False writes only what loads today: plain names, no
 # albite twins, no zoning by composition, and no garnet. Set True once they exist and rerun.
-FULL_LIBRARY = False
+FULL_LIBRARY = True
 
 
 def plag(an):
@@ -172,8 +172,10 @@ def granite(rng):
             grains.append(g)
         elif m == kfs:
             g = grain(kfs, x, y, s, e)
-            if kfs == "orthoclase" and rng.random() < 0.5:  # Carlsbad twins, common in granite K-feldspar
+            if rng.random() < 0.5:  # Carlsbad twins, common in granite K-feldspar
                 g["twin"] = {"law": "carlsbad"}
+            elif kfs == "microcline":  # the albite set of microcline's albite-pericline grid
+                g["twin"] = {"law": "albite", "lamella_mm": r3(rng.uniform(0.01, 0.03))}
             grains.append(g)
         else:
             grains.append(grain(m, x, y, s, e))

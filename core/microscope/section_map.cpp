@@ -433,17 +433,25 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     g.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
     const glm::dvec3 n = L * plane_normal(mc->cell, found->plane);
     // The twin operation: a half-turn about the twin axis. A law whose name gives "twin axis
-    // [uvw]" (Carlsbad [001], the mica law [310]) is a parallel twin about that lattice
-    // direction; otherwise it is a normal twin, the half-turn about the composition-plane normal
-    // (albite: the (010) normal; Nesse 2012 §7 "twinning").
+    // [uvw]" is a parallel twin about that lattice direction; otherwise it is a normal twin, the
+    // half-turn about the composition-plane normal (albite, Manebach, Baveno, the pyroxene and
+    // amphibole (100) twins; Nesse 2012 §7 "twinning").
+    // A law named without its axis takes the axis of the named law: Carlsbad [001], pericline
+    // [010] (parallel twins; Nesse 2012 §7, Deer, Howie & Zussman 2013 feldspars), mica law
+    // [310] (Handbook of Mineralogy, muscovite).
     glm::dvec3 axis = n;
     const std::string lt = lower(found->law);
+    std::optional<LatticeDirection> named_axis;
+    if (lt.rfind("carlsbad", 0) == 0) named_axis = LatticeDirection{0, 0, 1};
+    if (lt.rfind("pericline", 0) == 0) named_axis = LatticeDirection{0, 1, 0};
+    if (lt.rfind("mica", 0) == 0) named_axis = LatticeDirection{3, 1, 0};
     if (const auto at = lt.find("twin axis ["); at != std::string::npos) {
       const auto end = lt.find(']', at);
-      axis = L * gr.checked("twin", t->node(), [&](const json&) {
-        return lattice_direction(mc->cell, parse_lattice_direction(found->law.substr(at + 10, end - at - 9)));
+      named_axis = gr.checked("twin", t->node(), [&](const json&) {
+        return parse_lattice_direction(found->law.substr(at + 10, end - at - 9));
       });
     }
+    if (named_axis) axis = L * lattice_direction(mc->cell, *named_axis);
     const double limit = g.lamella_mm > 0.0 ? lamella_max_inclination_deg(g.lamella_mm, thickness_um)
                                             : kSimpleTwinMaxInclinationDeg;
     if (inclination_from_vertical_deg(n) <= limit) {
@@ -500,15 +508,12 @@ SectionMap parse_section(const json& j, const std::string& path) {
       if (gr.has("euler_deg")) {
         const auto e = numbers(gr, "euler_deg", 3);
         const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
-        // Without crystallography in the mineral file the indicatrix axes stand for the crystal
-        // frame (X, Y, Z = e1, e2, e3): the orientation is still uniformly specified, but habit,
-        // twins and cleavage cannot be placed.
-        if (mc && mc->orientation) {
-          g.lattice_to_section = L;
-          g.orientation = L * mc->indicatrix_axes;
-        } else {
-          g.orientation = L;
-        }
+        // Where the mineral file gives no optical orientation (no crystallography at all, or a
+        // lattice without one, as plagioclase and microcline have so far) the indicatrix axes
+        // X, Y, Z stand for the crystal frame's e1, e2, e3. With a lattice, habit, twins and
+        // cleavage are still placed from it.
+        if (mc) g.lattice_to_section = L;
+        g.orientation = (mc && mc->orientation) ? L * mc->indicatrix_axes : L;
       } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
         const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
         g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});

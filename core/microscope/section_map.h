@@ -47,7 +47,8 @@ struct SectionGrain {
   const Crystal* crystal = nullptr;
   glm::dmat3 orientation{1.0};  // indicatrix columns X, Y, Z in the section frame (of zone 0)
   // Crystal Cartesian frame (lattice.h) columns in the section frame, when the mineral has
-  // crystallography and the file gives euler_deg.
+  // crystallography (a unit cell) and the file gives euler_deg. Without an optical orientation in
+  // the mineral file, orientation = lattice_to_section (indicatrix X, Y, Z taken as e1, e2, e3).
   std::optional<glm::dmat3> lattice_to_section;
 
   glm::dvec2 centre_mm{0.0};
