@@ -30,7 +30,9 @@ std::vector<std::string> render_args(const std::vector<std::string>& extra) {
                                 "--set", "render.width=" + std::to_string(kSize),
                                 "--set", "render.height=" + std::to_string(kSize),
                                 "--set", "render.spp=1",
-                                "--set", "render.wavelengths=16"};
+                                "--set", "render.wavelengths=16",
+                                // 4×: a 5 mm field holds whole grains of the mm-grained granite.
+                                "--set", "objective.magnification=4"};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
@@ -75,7 +77,8 @@ TEST(SectionGroundTruth, LabelsAre16BitGrainNumbersOfThePixelCentres) {
   EXPECT_EQ(static_cast<int>(static_cast<unsigned char>(bytes[25])), 0) << "greyscale";
   // The same numbers as the core's label map of the same scene (exact: integers).
   Scene s = load_scene_file(kScene);
-  apply_settings(s, {"render.width=" + std::to_string(kSize), "render.height=" + std::to_string(kSize)});
+  apply_settings(s, {"render.width=" + std::to_string(kSize), "render.height=" + std::to_string(kSize),
+                     "objective.magnification=4"});
   const auto section = load_section(s.sample.section);
   const std::vector<std::uint16_t> expected = grain_label_image(s, *section);
   const std::vector<std::uint16_t> got = read_labels(dir / "l.png");
