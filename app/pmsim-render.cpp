@@ -149,7 +149,8 @@ int main(int argc, char** argv) {
     if (is_scene3d(j)) {
       if (ground_truth)
         throw pmsim::InputError(path, "type", "scene3d",
-                                std::string(ground_truth_flag) + " needs a microscope scene with sample.type=section");
+                                std::string(ground_truth_flag) +
+                                    " needs a microscope scene with sample.type=section");
       for (const std::string& s : args.sets) apply_scene3d_setting(j, s);
       const pmsim::Scene3dDescription desc = pmsim::parse_scene3d(j, path);
       pmsim::Scene3dImage img = pmsim::render_scene3d(desc);
@@ -172,11 +173,13 @@ int main(int argc, char** argv) {
       pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
       for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       pmsim::apply_settings(scene, args.sets);
-      if (ground_truth && !(scene.sample_in && scene.sample.type == pmsim::SampleType::Section))
+      if (ground_truth && !(scene.sample_in && scene.sample.type == pmsim::SampleType::Section)) {
+        const nlohmann::json saved = pmsim::scene_to_json(scene);
         throw pmsim::InputError(path, scene.sample_in ? "sample.type" : "sample.present",
-                                scene.sample_in ? pmsim::scene_to_json(scene)["sample"]["type"].get<std::string>()
-                                                : "false",
-                                std::string(ground_truth_flag) + " needs a thin section on the stage (sample.type=section)");
+                                scene.sample_in ? saved["sample"]["type"].get<std::string>() : "false",
+                                std::string(ground_truth_flag) +
+                                    " needs a thin section on the stage (sample.type=section)");
+      }
       const bool tty = ::isatty(STDERR_FILENO);
       pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
           scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);

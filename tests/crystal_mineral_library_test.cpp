@@ -66,7 +66,9 @@ TEST(MineralLibrary, EveryMineralHasCitedCrystallography) {
       EXPECT_EQ(m->system, CrystalSystem::Triclinic);
     }
     for (const Cleavage& k : m->cleavage) EXPECT_FALSE(k.source.empty());
-    if (m->habit.elongation || m->habit.tabular) EXPECT_FALSE(m->habit.source.empty());
+    if (m->habit.elongation || m->habit.tabular) {
+      EXPECT_FALSE(m->habit.source.empty());
+    }
     for (const TwinLaw& t : m->twins) EXPECT_FALSE(t.source.empty());
   }
   EXPECT_GE(anisotropic_with_orientation, 16);

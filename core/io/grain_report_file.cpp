@@ -23,7 +23,8 @@ json grain_report_json(const GrainReport& r) {
   return j;
 }
 
-json grain_reports_json(const Scene& scene, const SectionMap& section, const std::vector<GrainReport>& grains) {
+json grain_reports_json(const Scene& scene, const SectionMap& section,
+                        const std::vector<GrainReport>& grains) {
   json list = json::array();
   for (const GrainReport& r : grains) list.push_back(grain_report_json(r));
   return {{"section", section.name},

@@ -83,8 +83,8 @@ void write_image_rgb8(const std::string& path, int width, int height, const std:
   });
 }
 
-void write_gray16_png(const std::string& path, int width, int height, const std::vector<std::uint16_t>& values,
-                      const nlohmann::json& metadata) {
+void write_gray16_png(const std::string& path, int width, int height,
+                      const std::vector<std::uint16_t>& values, const nlohmann::json& metadata) {
   if (width <= 0 || height <= 0 || values.size() != static_cast<std::size_t>(width) * height)
     throw std::runtime_error("cannot write " + path + ": image size does not match its pixels");
   if (lower_extension(path) != ".png")

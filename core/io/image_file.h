@@ -22,8 +22,8 @@ void write_image_rgb8(const std::string& path, int width, int height, const std:
 
 // A 16-bit greyscale PNG of data values (e.g. the grain labels of pmsim-render --labels), top row
 // first, with the same metadata chunks; atomic like the others. The path must end in .png.
-void write_gray16_png(const std::string& path, int width, int height, const std::vector<std::uint16_t>& values,
-                      const nlohmann::json& metadata);
+void write_gray16_png(const std::string& path, int width, int height,
+                      const std::vector<std::uint16_t>& values, const nlohmann::json& metadata);
 
 struct LoadedImage {
   int width = 0, height = 0, channels = 0;

@@ -27,8 +27,8 @@ void on_warning(png_structp, png_const_charp) {}
 // The libpng calls, in a frame of their own that holds only trivially copyable values: an error
 // longjmps back to the setjmp here, and nothing with a destructor lives between the two.
 // bit_depth 8 with RGB (colour, marked sRGB) or 16 with grey (data, no colour space).
-bool write_with_libpng(png_structp png, png_infop info, EncodeState* state, int width, int height, int bit_depth,
-                       int color_type, png_text* chunks, int chunk_count, png_bytepp rows) {
+bool write_with_libpng(png_structp png, png_infop info, EncodeState* state, int width, int height,
+                       int bit_depth, int color_type, png_text* chunks, int chunk_count, png_bytepp rows) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_set_write_fn(png, state, append_bytes, no_flush);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth,
@@ -42,8 +42,8 @@ bool write_with_libpng(png_structp png, png_infop info, EncodeState* state, int 
 
 
 // One image through libpng: rows of row_bytes bytes each, already in the file's byte order.
-std::vector<unsigned char> encode(int width, int height, int bit_depth, int color_type, const std::uint8_t* data,
-                                  std::size_t row_bytes,
+std::vector<unsigned char> encode(int width, int height, int bit_depth, int color_type,
+                                  const std::uint8_t* data, std::size_t row_bytes,
                                   const std::vector<std::pair<std::string, std::string>>& text) {
   std::vector<unsigned char> bytes;
   EncodeState state{&bytes, {}};
@@ -61,8 +61,8 @@ std::vector<unsigned char> encode(int width, int height, int bit_depth, int colo
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
   if (!png) throw std::runtime_error("libpng: cannot create a write structure");
   png_infop info = png_create_info_struct(png);
-  const bool ok = info && write_with_libpng(png, info, &state, width, height, bit_depth, color_type, chunks.data(),
-                                            static_cast<int>(chunks.size()), rows.data());
+  const bool ok = info && write_with_libpng(png, info, &state, width, height, bit_depth, color_type,
+                                            chunks.data(), static_cast<int>(chunks.size()), rows.data());
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok)
     throw std::runtime_error(state.error.empty() ? "libpng: cannot create an info structure"

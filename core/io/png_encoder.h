@@ -1,7 +1,7 @@
 #pragma once
-// 8-bit RGB and 16-bit grey PNG encoding in memory with libpng, so that writing a PNG (every screenshot and every
-// default render) does not load OpenImageIO: its ~260 shared libraries cost most of a short
-// process's start (issue 14: 0.27 s of an 8×8 render, 72 % of it in the dynamic loader).
+// 8-bit RGB and 16-bit grey PNG encoding in memory with libpng, so that writing a PNG (every
+// screenshot and every default render) does not load OpenImageIO: its ~260 shared libraries cost
+// most of a short process's start (issue 14: 0.27 s of an 8×8 render, 72 % of it in the dynamic loader).
 #include <cstdint>
 #include <string>
 #include <utility>

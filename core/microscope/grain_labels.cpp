@@ -11,7 +11,8 @@ namespace pmsim {
 
 std::vector<std::uint16_t> grain_label_image(const Scene& scene, const SectionMap& section) {
   if (section.grains.size() > 65535)
-    throw std::invalid_argument("section '" + section.name + "' has " + std::to_string(section.grains.size()) +
+    throw std::invalid_argument("section '" + section.name + "' has " +
+                                std::to_string(section.grains.size()) +
                                 " grains: labels of more than 65535 do not fit a 16-bit image");
   const int W = scene.render.width, H = scene.render.height;
   std::vector<std::uint16_t> labels(static_cast<std::size_t>(W) * H, 0);
@@ -36,7 +37,8 @@ std::vector<std::uint16_t> grain_label_image(const Scene& scene, const SectionMa
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < W; ++x)
-        labels[static_cast<std::size_t>(y) * W + x] = label_at(to_section(field_from_pixel(W, H, x + 0.5, y + 0.5)));
+        labels[static_cast<std::size_t>(y) * W + x] =
+            label_at(to_section(field_from_pixel(W, H, x + 0.5, y + 0.5)));
   });
   return labels;
 }

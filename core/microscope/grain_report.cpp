@@ -61,9 +61,12 @@ const MineralCrystallography* crystallography_of(const std::string& mineral) {
 
 const char* sign_of_elongation_name(SignOfElongation s) {
   switch (s) {
-    case SignOfElongation::LengthSlow: return "length-slow";
-    case SignOfElongation::LengthFast: return "length-fast";
-    case SignOfElongation::Indeterminate: break;
+    case SignOfElongation::LengthSlow:
+      return "length-slow";
+    case SignOfElongation::LengthFast:
+      return "length-fast";
+    case SignOfElongation::Indeterminate:
+      break;
   }
   return "indeterminate";
 }
@@ -102,10 +105,11 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     }
     try {
       if (m->habit.elongation)
-        elongation = projected_direction(kSectionNormal,
-                                         lattice_to_section * lattice_direction(m->cell, *m->habit.elongation));
+        elongation = projected_direction(
+            kSectionNormal, lattice_to_section * lattice_direction(m->cell, *m->habit.elongation));
       else if (m->habit.tabular)
-        elongation = plane_trace(kSectionNormal, lattice_to_section * plane_normal(m->cell, *m->habit.tabular));
+        elongation =
+            plane_trace(kSectionNormal, lattice_to_section * plane_normal(m->cell, *m->habit.tabular));
     } catch (const std::invalid_argument&) {
       // Seen end-on (elongation along the normal) or flat on the tabular plane: equant in section.
     }
@@ -122,8 +126,8 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   if (feature && !optics.circular) r.extinction_angle_deg = extinction_from(optics, *feature).angle_deg;
   if (g.twinned)
     r.twin = GrainTwinReport{
-        g.twin_law,
-        extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm), scene.polarizer_deg)};
+        g.twin_law, extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm),
+                                      scene.polarizer_deg)};
   return r;
 }
 

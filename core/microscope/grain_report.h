@@ -28,13 +28,13 @@ constexpr double kGrainReportIndexWavelengthNm = 589.3;
 constexpr double kGrainReportRetardationWavelengthNm = 550.0;
 
 struct GrainTwinReport {
-  std::string law;                          // SectionGrain::twin_law
+  std::string law;                           // SectionGrain::twin_law
   std::vector<double> extinction_stage_deg;  // of the twin individual (odd lamellae)
 };
 
 struct GrainReport {
-  int id = 0;            // the grain's label (SectionMap::grain_label)
-  std::string mineral;   // as the section file names it, composition included ("plagioclase:An35")
+  int id = 0;           // the grain's label (SectionMap::grain_label)
+  std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
   // Bunge (φ1, Φ, φ2) of lattice_to_section, degrees; empty when the mineral has no unit cell and
   // optical orientation (then no cleavage traces or habit either).
   std::optional<std::array<double, 3>> euler_deg;

@@ -82,14 +82,16 @@ void check_scene(const Scene& s, const std::string& file) {
   // Eyepiece field numbers run from 18 mm (student eyepieces) to 26.5 mm (wide-field ones); the
   // range allowed is wider, but a field number must be a positive length.
   finite(s.eyepiece.field_number_mm, "eyepiece.field_number_mm");
-  require(s.eyepiece.field_number_mm > 0 && s.eyepiece.field_number_mm <= 100, file, "eyepiece.field_number_mm",
-          num(s.eyepiece.field_number_mm), "must be in (0, 100] mm");
+  require(s.eyepiece.field_number_mm > 0 && s.eyepiece.field_number_mm <= 100, file,
+          "eyepiece.field_number_mm", num(s.eyepiece.field_number_mm), "must be in (0, 100] mm");
   // The stage travel of a microscope is a few centimetres; ±1 m keeps every derived coordinate
   // far from overflow while refusing typos such as 1e300.
   finite(s.stage.x_mm, "stage.x_mm");
   finite(s.stage.y_mm, "stage.y_mm");
-  require(std::abs(s.stage.x_mm) <= 1000, file, "stage.x_mm", num(s.stage.x_mm), "must be in [-1000, 1000] mm");
-  require(std::abs(s.stage.y_mm) <= 1000, file, "stage.y_mm", num(s.stage.y_mm), "must be in [-1000, 1000] mm");
+  require(std::abs(s.stage.x_mm) <= 1000, file, "stage.x_mm", num(s.stage.x_mm),
+          "must be in [-1000, 1000] mm");
+  require(std::abs(s.stage.y_mm) <= 1000, file, "stage.y_mm", num(s.stage.y_mm),
+          "must be in [-1000, 1000] mm");
   // A dry objective and condenser collect at most sin θ < 1 in air.
   require(s.objective.na > 0 && s.objective.na < 1, file, "objective.na", num(s.objective.na),
           "numerical aperture in air must be in (0, 1)");

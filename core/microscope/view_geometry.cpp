@@ -30,7 +30,9 @@ double mm_per_pixel(const Scene& scene, int width, int height) {
 }
 
 FieldToSection::FieldToSection(const Scene& scene)
-    : rotate(scene.stage_deg), half_fov_mm(0.5 * field_of_view_mm(scene)), centre_mm(scene.stage.x_mm, scene.stage.y_mm) {}
+    : rotate(scene.stage_deg),
+      half_fov_mm(0.5 * field_of_view_mm(scene)),
+      centre_mm(scene.stage.x_mm, scene.stage.y_mm) {}
 
 glm::dvec2 section_point_from_pixel(const Scene& scene, int width, int height, double px, double py) {
   return FieldToSection(scene)(field_from_pixel(width, height, px, py));
