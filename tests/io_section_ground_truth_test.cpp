@@ -124,8 +124,10 @@ TEST(SectionGroundTruth, GrainListAgreesWithTheImage) {
 // sums, far below that).
 TEST(SectionGroundTruth, GrainsAreExtinctAtTheirReportedStageAngle) {
   ScratchDir dir;
-  CommandResult r = run_command(
-      render_args({"--out", dir / "a.exr", "--labels", dir / "l.png", "--grains", dir / "g.json"}), dir);
+  // The schist: many sub-mm quartz grains (first-order grey) wholly inside a 4× field.
+  CommandResult r = run_command(render_args({"--set", "sample.section=schist", "--out", dir / "a.exr", "--labels",
+                                             dir / "l.png", "--grains", dir / "g.json"}),
+                                dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::uint16_t> labels = read_labels(dir / "l.png");
   const nlohmann::json g = nlohmann::json::parse(read_file(dir / "g.json"));
@@ -149,7 +151,8 @@ TEST(SectionGroundTruth, GrainsAreExtinctAtTheirReportedStageAngle) {
   const int id = (*best)["id"].get<int>();
   const double stage = (*best)["extinction_stage_deg"][0].get<double>();
   auto mean_at = [&](double stage_deg, int* n) {
-    const CommandResult rr = run_command(render_args({"--set", "stage_deg=" + std::to_string(stage_deg),
+    const CommandResult rr = run_command(render_args({"--set", "sample.section=schist", "--set",
+                                                      "stage_deg=" + std::to_string(stage_deg),
                                                       "--out", dir / "s.exr", "--labels", dir / "s.png"}),
                                          dir);
     EXPECT_EQ(rr.exit_code, 0) << rr.err;
