@@ -9,36 +9,14 @@
 #include <string>
 
 #include "core/base/input_error.h"
+#include "reliability_support.h"
 
 namespace pmsim::ebsd_test {
 
 namespace fs = std::filesystem;
 
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("pmsim_ebsd_" + std::to_string(::getpid()) + "_" +
-             (info ? std::string(info->test_suite_name()) + "_" + info->name() : "x"));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name, const std::string& bytes) const {
-    const fs::path p = path_ / name;
-    std::ofstream f(p, std::ios::binary);
-    f << bytes;
-    return p.string();
-  }
-  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+// The reliability tests' scratch folder: a fresh folder per test, removed afterwards.
+using ScratchDir = ::pmsim::reliability::ScratchDir;
 
 // Every "\n" of `text` as "\r\n" (files written on Windows).
 inline std::string crlf(const std::string& text) {

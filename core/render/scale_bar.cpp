@@ -2,30 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
+
+#include "core/render/dot_matrix_font.h"
 
 namespace pmsim {
 
 namespace {
-
-// 5 × 7 glyphs, one byte per row, bit 4 = leftmost column.
-struct Glyph {
-  char c;
-  std::uint8_t rows[7];
-};
-constexpr Glyph kGlyphs[] = {
-    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}}, {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
-    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}}, {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
-    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}}, {' ', {0, 0, 0, 0, 0, 0, 0}},
-    {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}}, {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x15, 0x15}},
-};
-
-const Glyph* glyph(char c) {
-  for (const Glyph& g : kGlyphs)
-    if (g.c == c) return &g;
-  return nullptr;
-}
 
 std::string length_label(double mm) {
   char buf[32];
@@ -80,7 +63,7 @@ void burn_scale_bar(std::vector<float>& rgb, int width, int height, const ScaleB
   box(margin, y_bar, margin + bar_len, y_bar + bar_h);
   int x = margin;
   for (char c : bar.label) {
-    if (const Glyph* g = glyph(c))
+    if (const DotMatrixGlyph* g = dot_matrix_glyph(c))
       for (int r = 0; r < 7; ++r)
         for (int col = 0; col < 5; ++col)
           if (g->rows[r] & (0x10 >> col)) box(x + col * s, y_text + r * s, x + (col + 1) * s, y_text + (r + 1) * s);
