@@ -11,6 +11,9 @@
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/grain_report.h"
+#include "core/microscope/section_map.h"
+
+#include <nlohmann/json.hpp>
 
 using namespace pmsim;
 
@@ -27,13 +30,17 @@ glm::dmat3 rot_z(double deg) {
   return glm::dmat3(c, s, 0, -s, c, 0, 0, 0, 1);  // columns
 }
 
-SectionMap one_grain(const std::string& mineral, const glm::dmat3& orientation) {
+// A grain placed as section_map places one given by euler_deg: its lattice frame in the section
+// and its indicatrix there, the mineral file's X, Y, Z carried by that frame.
+SectionMap one_grain(const std::string& mineral, const glm::dmat3& lattice_to_section) {
+  const MineralCrystallography* mc = find_mineral_crystallography(mineral);
   SectionMap m;
   m.name = "test";
   SectionGrain g;
   g.mineral = mineral;
   g.crystal = &find_mineral(mineral);
-  g.orientation = orientation;
+  g.lattice_to_section = lattice_to_section;
+  g.orientation = lattice_to_section * mc->indicatrix_axes;
   m.grains.push_back(g);
   return m;
 }
@@ -44,7 +51,10 @@ TEST(GrainReport, QuartzWithItsOpticAxisInTheSection) {
   const double a = 35.0;  // the c axis's trace, section frame
   // Columns X, Y, Z: Z = c in the section plane at angle a, X the section normal, Y = Z × X.
   const glm::dvec3 Z(std::cos(radians(a)), std::sin(radians(a)), 0), X(0, 0, 1);
-  SectionMap map = one_grain("quartz", glm::dmat3(X, glm::cross(Z, X), Z));
+  const MineralCrystallography* m = find_mineral_crystallography("quartz");
+  ASSERT_TRUE(m && m->orientation);
+  const glm::dmat3 L = glm::dmat3(X, glm::cross(Z, X), Z) * glm::transpose(m->indicatrix_axes);
+  SectionMap map = one_grain("quartz", L);
   map.grains[0].twinned = true;
   map.grains[0].twin_law = "test";
   map.grains[0].twin_orientation = rot_z(30.0) * map.grains[0].orientation;
@@ -80,9 +90,6 @@ TEST(GrainReport, QuartzWithItsOpticAxisInTheSection) {
   EXPECT_NEAR(r.twin->extinction_stage_deg[0], 35.0, 1e-9);
   // Bunge angles: turned back into a matrix they give the lattice's axes in the section frame.
   ASSERT_TRUE(r.euler_deg);
-  const MineralCrystallography* m = find_mineral_crystallography("quartz");
-  ASSERT_TRUE(m && m->orientation);
-  const glm::dmat3 L = map.grains[0].orientation * glm::transpose(m->indicatrix_axes);
   const glm::dmat3 back = crystal_to_sample_from_bunge(
       {radians((*r.euler_deg)[0]), radians((*r.euler_deg)[1]), radians((*r.euler_deg)[2])});
   for (int i = 0; i < 3; ++i)
@@ -97,7 +104,7 @@ TEST(GrainReport, BiotiteCutAcrossItsCleavageIsLengthSlowAlongTheTrace) {
   const double a = 20.0;
   const glm::dmat3 tilt(1, 0, 0, 0, 0, 1, 0, -1, 0);  // R_x(90°): e3 → (0, −1, 0), in the section
   const glm::dmat3 lattice_to_section = rot_z(a) * tilt;
-  const SectionMap map = one_grain("biotite", lattice_to_section * m->indicatrix_axes);
+  const SectionMap map = one_grain("biotite", lattice_to_section);
   Scene s;
   s.stage_deg = 40.0;
   const GrainReport r = report_grain(s, map, 1);
@@ -113,4 +120,31 @@ TEST(GrainReport, BiotiteCutAcrossItsCleavageIsLengthSlowAlongTheTrace) {
   ASSERT_TRUE(r.extinction_angle_deg);
   EXPECT_LT(*r.extinction_angle_deg, 5.0);
   EXPECT_THROW(report_grain(s, map, 2), std::out_of_range);
+}
+
+// The report's cleavage traces are the cracks the section draws, for several lattice
+// orientations of a plagioclase grain (a mineral with a lattice but no optical orientation in its
+// file: its crystal frame comes from euler_deg, not from its indicatrix), including ones where
+// (001) or (010) lies too flat to show.
+TEST(GrainReport, CleavageTracesAreTheCracksTheSectionDraws) {
+  int flat_ones = 0;
+  for (const double Phi : {0.0, 20.0, 45.0, 70.0, 90.0})
+    for (const double phi2 : {0.0, 30.0, 60.0, 90.0}) {
+      const nlohmann::json j = {
+          {"size_mm", {2.0, 2.0}},
+          {"grains",
+           {{{"mineral", "plagioclase"}, {"centre_mm", {0.0, 0.0}}, {"size_mm", 1.5}, {"euler_deg", {15.0, Phi, phi2}}}}}};
+      const SectionMap map = section_from_json(j, "cleavage test");
+      Scene s;
+      s.stage_deg = 12.0;
+      const GrainReport r = report_grain(s, map, 1);
+      ASSERT_TRUE(r.euler_deg) << "the lattice gives plagioclase its Euler angles";
+      const std::vector<CleavageCracks>& cracks = map.grains[0].cracks;
+      flat_ones += static_cast<int>(2 - cracks.size());
+      ASSERT_EQ(r.cleavage_traces_deg.size(), cracks.size()) << "Phi " << Phi << ", phi2 " << phi2;
+      // 1e-9°: the same plane normal through two code paths, rounding only.
+      for (std::size_t k = 0; k < cracks.size(); ++k)
+        EXPECT_NEAR(line_diff_deg(r.cleavage_traces_deg[k], degrees(cracks[k].trace_rad) + s.stage_deg), 0.0, 1e-9);
+    }
+  EXPECT_GT(flat_ones, 0) << "some of these orientations must put a cleavage too flat to draw";
 }

@@ -21,6 +21,19 @@ glm::dmat3 frame(const glm::dvec3 (&v)[3]) {
   return m;
 }
 
+// The frame from two placed axes: `first` along the unit vector u, `second` along the unit vector
+// v ⟂ u; the remaining axis is u × v, then the frame is made right-handed. The monoclinic and the
+// triclinic orientations both give one axis fixed by symmetry or a plane normal and one in the
+// plane ⟂ it.
+glm::dmat3 frame_from_two_axes(IndicatrixAxis first, const glm::dvec3& u, IndicatrixAxis second,
+                               const glm::dvec3& v) {
+  glm::dvec3 axes[3];
+  axes[index_of(first)] = u;
+  axes[index_of(second)] = v;
+  axes[3 - index_of(first) - index_of(second)] = glm::normalize(glm::cross(u, v));
+  return frame(axes);
+}
+
 }  // namespace
 
 char indicatrix_axis_name(IndicatrixAxis a) { return "XYZ"[index_of(a)]; }
@@ -65,12 +78,7 @@ glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const Opt
       const double t = radians(o.angle_deg);
       const double s = o.side == MonoclinicSide::ObtuseBeta ? 1.0 : -1.0;
       const glm::dvec3 inclined = std::cos(t) * ref + s * std::sin(t) * toward;
-      glm::dvec3 v[3];
-      v[index_of(o.along_b)] = b;
-      v[index_of(o.inclined)] = inclined;
-      const int third = 3 - index_of(o.along_b) - index_of(o.inclined);
-      v[third] = glm::normalize(glm::cross(b, inclined));
-      return frame(v);
+      return frame_from_two_axes(o.along_b, b, o.inclined, inclined);
     }
     case OpticalOrientation::Kind::Triclinic: {
       if (system != CrystalSystem::Triclinic)
@@ -86,12 +94,7 @@ glm::dmat3 indicatrix_axes(CrystalSystem system, const UnitCell& cell, const Opt
       const glm::dvec3 u = glm::normalize(rp), w = glm::cross(n, u);  // u, w span the plane, n × u = w
       const double t = radians(o.angle_deg);
       const glm::dvec3 inclined = std::cos(t) * u + std::sin(t) * w;  // rotation by t about +n
-      glm::dvec3 v[3];
-      v[index_of(o.normal_axis)] = n;
-      v[index_of(o.inclined)] = inclined;
-      const int third = 3 - index_of(o.normal_axis) - index_of(o.inclined);
-      v[third] = glm::normalize(glm::cross(n, inclined));
-      return frame(v);
+      return frame_from_two_axes(o.normal_axis, n, o.inclined, inclined);
     }
   }
   throw BadValue{"unknown optical orientation"};

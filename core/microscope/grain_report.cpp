@@ -46,15 +46,22 @@ SectionOptics optics_of(const SectionGrain& g, const glm::dmat3& orientation, do
   return section_optics(orientation, n, kSectionNormal);
 }
 
-// The library's crystallography when it places the indicatrix in the lattice; else nullptr (a
-// mineral without those data, or a name the library cannot resolve to them).
-const MineralCrystallography* crystallography_of(const std::string& mineral) {
+// The library's crystallography of a grain placed by its lattice (a mineral with a unit cell and
+// a section grain given by euler_deg); else nullptr.
+const MineralCrystallography* crystallography_of(const SectionGrain& g) {
+  if (!g.lattice_to_section) return nullptr;
   try {
-    const MineralCrystallography* m = find_mineral_crystallography(mineral);
-    return m && m->orientation ? m : nullptr;
+    return find_mineral_crystallography(g.mineral);
   } catch (const InputError&) {
     return nullptr;
   }
+}
+
+// Whether a cleavage shows in the section as the cracks section_map draws: a cleavage proper (a
+// parting draws none) whose plane is within kCleavageMaxInclinationDeg of vertical.
+bool cleavage_shows(const Cleavage& c, const glm::dvec3& normal_in_section) {
+  return c.quality != CleavageQuality::Parting &&
+         inclination_from_vertical_deg(normal_in_section) <= kCleavageMaxInclinationDeg;
 }
 
 }  // namespace
@@ -86,8 +93,8 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
                                     scene.sample.thickness_um);
   // Features in the section frame: the first cleavage trace and the elongation.
   std::optional<glm::dvec3> first_cleavage, elongation;
-  if (const MineralCrystallography* m = crystallography_of(g.mineral)) {
-    const glm::dmat3 lattice_to_section = g.orientation * glm::transpose(m->indicatrix_axes);
+  if (const MineralCrystallography* m = crystallography_of(g)) {
+    const glm::dmat3& lattice_to_section = *g.lattice_to_section;
     try {
       const EulerBunge e = bunge_from_crystal_to_sample(lattice_to_section);
       r.euler_deg = std::array<double, 3>{degrees(e.phi1_rad), degrees(e.Phi_rad), degrees(e.phi2_rad)};
@@ -95,8 +102,10 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
       // An improper or non-orthonormal grain frame has no Euler angles: left empty.
     }
     for (const Cleavage& c : m->cleavage) {
+      const glm::dvec3 n = lattice_to_section * plane_normal(m->cell, c.plane);
+      if (!cleavage_shows(c, n)) continue;
       try {
-        const glm::dvec3 t = plane_trace(kSectionNormal, lattice_to_section * plane_normal(m->cell, c.plane));
+        const glm::dvec3 t = plane_trace(kSectionNormal, n);
         if (!first_cleavage) first_cleavage = t;
         r.cleavage_traces_deg.push_back(image_angle_deg(t, scene.stage_deg));
       } catch (const std::invalid_argument&) {

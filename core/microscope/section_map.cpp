@@ -268,10 +268,16 @@ std::optional<double> crack_spacing_mm(CleavageQuality q) {
   return std::nullopt;
 }
 
-// Planes within this angle of vertical show as sharp traces: a plane inclined θ from the
-// vertical smears across t·tan θ of a t = 30 µm section (17 µm at 30°), comparable to the crack
-// spacing of a good cleavage; steeper inclinations give diffuse bands that are not seen as cracks.
-constexpr double kCleavageMaxInclinationDeg = 30.0;
+// The indicatrix (columns X, Y, Z) of a grain whose crystal frame is L in the section: L times
+// the mineral file's X, Y, Z in the crystal frame. A mineral with a lattice but no
+// optical_orientation in its file (plagioclase, the whole series, and microcline: the library has
+// no published orientation of their X, Y, Z; see their files' "note") gets X, Y, Z along the
+// crystal frame's e1, e2, e3. That is a stand-in, not data: such grains are shaped, twinned and
+// cracked from their lattice and show their indices' birefringence, but their extinction angles
+// to those traces (and so the Michel-Lévy curve) are not the mineral's.
+glm::dmat3 indicatrix_in_section(const MineralCrystallography* mc, const glm::dmat3& L) {
+  return mc && mc->orientation ? L * mc->indicatrix_axes : L;
+}
 // Lamellae of width w stay distinct while the smear t·tan θ is under half a lamella, θ ≤
 // atan(w / 2t) (18° for 20 µm lamellae in a 30 µm section), but no more than the cleavage limit.
 double lamella_max_inclination_deg(double lamella_mm, double thickness_um) {
@@ -287,8 +293,6 @@ constexpr double kSimpleTwinMaxInclinationDeg = 60.0;
 constexpr double kPrismAspect = 3.0;
 constexpr double kPlateAspect = 5.0;
 
-// Inclination of a plane (unit normal in the section frame) from the vertical, degrees.
-double inclination_from_vertical_deg(const glm::dvec3& n) { return degrees(std::asin(std::min(1.0, std::abs(n.z)))); }
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -410,7 +414,7 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
       if (zone.outer_fraction <= prev) z.fail("outer_fraction", "zone radii must increase outward");
       prev = zone.outer_fraction;
       const MineralCrystallography* zc = find_mineral_crystallography(zone.mineral);
-      zone.orientation = (has_lattice && zc && zc->orientation) ? L * zc->indicatrix_axes : g.orientation;
+      zone.orientation = has_lattice && zc ? indicatrix_in_section(zc, L) : g.orientation;
       g.zones.push_back(zone);
     }
   }
@@ -508,12 +512,8 @@ SectionMap parse_section(const json& j, const std::string& path) {
       if (gr.has("euler_deg")) {
         const auto e = numbers(gr, "euler_deg", 3);
         const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
-        // Where the mineral file gives no optical orientation (no crystallography at all, or a
-        // lattice without one, as plagioclase and microcline have so far) the indicatrix axes
-        // X, Y, Z stand for the crystal frame's e1, e2, e3. With a lattice, habit, twins and
-        // cleavage are still placed from it.
         if (mc) g.lattice_to_section = L;
-        g.orientation = (mc && mc->orientation) ? L * mc->indicatrix_axes : L;
+        g.orientation = indicatrix_in_section(mc, L);
       } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
         const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
         g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
@@ -536,6 +536,8 @@ SectionMap parse_section(const json& j, const std::string& path) {
 }
 
 }  // namespace
+
+double inclination_from_vertical_deg(const glm::dvec3& n) { return degrees(std::asin(std::min(1.0, std::abs(n.z)))); }
 
 SectionMap section_from_json(const nlohmann::json& j, const std::string& origin) {
   try {

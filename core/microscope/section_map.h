@@ -42,13 +42,22 @@ struct CleavageCracks {
   double spacing_mm = 0.05;  // mean distance between cracks
 };
 
+// Cleavage planes within this angle of vertical show as sharp crack traces: a plane inclined θ
+// from the vertical smears across t·tan θ of a t = 30 µm section (17 µm at 30°), comparable to the
+// crack spacing of a good cleavage; steeper inclinations give diffuse bands not seen as cracks.
+// The section's cracks and the grain report's cleavage traces both follow it.
+inline constexpr double kCleavageMaxInclinationDeg = 30.0;
+// Inclination of a plane (unit normal in the section frame, z ⟂ the section) from the vertical, degrees.
+double inclination_from_vertical_deg(const glm::dvec3& n);
+
 struct SectionGrain {
   std::string mineral;  // with composition text
   const Crystal* crystal = nullptr;
   glm::dmat3 orientation{1.0};  // indicatrix columns X, Y, Z in the section frame (of zone 0)
   // Crystal Cartesian frame (lattice.h) columns in the section frame, when the mineral has
   // crystallography (a unit cell) and the file gives euler_deg. Without an optical orientation in
-  // the mineral file, orientation = lattice_to_section (indicatrix X, Y, Z taken as e1, e2, e3).
+  // the mineral file (plagioclase, microcline) orientation = lattice_to_section: X, Y, Z along
+  // e1, e2, e3, a stand-in that gives such grains no published extinction angles.
   std::optional<glm::dmat3> lattice_to_section;
 
   glm::dvec2 centre_mm{0.0};
