@@ -1,5 +1,5 @@
 // pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif [--stats FILE.json]
-//              [--labels FILE.png] [--grains FILE.json]
+//              [--labels FILE.png] [--grains FILE.json] [--scale-bar]
 // Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
 // scene ("type": "scene3d", core/scene3d), and writes the image atomically. A thin section's
 // ground truth goes with it: --labels the grain under every pixel centre (16-bit grey PNG,
@@ -29,6 +29,8 @@
 #include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/grain_labels.h"
+#include "core/microscope/view_geometry.h"
+#include "core/render/scale_bar.h"
 #include "core/microscope/grain_report.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/section_map.h"
@@ -42,6 +44,7 @@ constexpr const char* kProgram = "pmsim-render";
 struct Args {
   std::string scene_path, out, stats, labels, grains;
   std::vector<std::string> sets;
+  bool scale_bar = false;
 };
 
 [[noreturn]] void usage_error(const std::string& msg) { pmsim::cli::usage_error(kProgram, msg); }
@@ -66,6 +69,9 @@ Args parse_args(int argc, char** argv) {
                  "thin sections: write the grains in the image (mineral, orientation, area, cleavage "
                  "traces, extinction, retardation, twin) as JSON")
       ->type_name("FILE.json");
+  app.add_flag("--scale-bar", a.scale_bar,
+               "orthoscopic microscope views: burn a scale bar (section millimetres) into the image, "
+               "bottom left, as the app's exports do");
   pmsim::cli::parse_or_exit(app, argc, argv);
   return a;
 }
@@ -147,6 +153,8 @@ int main(int argc, char** argv) {
         args.scene_path.empty() ? pmsim::asset_dir() + "/scenes/quartz_section_ortho.json" : args.scene_path;
     nlohmann::json j = read_scene_json(path);
     if (is_scene3d(j)) {
+      if (args.scale_bar)
+        throw pmsim::InputError(path, "type", "scene3d", "--scale-bar needs an orthoscopic microscope scene");
       if (ground_truth)
         throw pmsim::InputError(path, "type", "scene3d",
                                 std::string(ground_truth_flag) +
@@ -180,6 +188,12 @@ int main(int argc, char** argv) {
                                 std::string(ground_truth_flag) +
                                     " needs a thin section on the stage (sample.type=section)");
       }
+      // The bar measures the specimen plane: only the orthoscopic image (without the Bertrand
+      // lens) is one; a conoscopic image shows directions, not lengths.
+      if (args.scale_bar && scene.mode != pmsim::ViewMode::Ortho)
+        throw pmsim::InputError(path, "mode", "cono", "--scale-bar needs the orthoscopic view (mode=ortho)");
+      if (args.scale_bar && scene.bertrand_in)
+        throw pmsim::InputError(path, "bertrand", "in", "--scale-bar needs the Bertrand lens out (bertrand=out)");
       const bool tty = ::isatty(STDERR_FILENO);
       pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
           scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);
@@ -188,6 +202,9 @@ int main(int argc, char** argv) {
       height = img.height;
       rgb = std::move(img.rgb);
       meta = pmsim::scene_to_json(scene);
+      if (args.scale_bar)
+        pmsim::burn_scale_bar(rgb, width, height,
+                              pmsim::choose_scale_bar(pmsim::mm_per_pixel(scene, width, height), width));
       if (ground_truth) {
         section = pmsim::load_section(scene.sample.section);
         labels = pmsim::grain_label_image(scene, *section);

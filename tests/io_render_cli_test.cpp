@@ -93,3 +93,46 @@ TEST(RenderCli, AScene3dFileGoesToThe3dRendererWithSetOnItsDotPaths) {
   EXPECT_EQ(run(scene + " --set camera.width.x=5 --out " + bad), 2);
   EXPECT_FALSE(fs::exists(bad));
 }
+
+// --scale-bar burns the bar into the exported image and changes nothing else of it. The basalt
+// scene at 10×, field number 20: a 2 mm field over the 72-pixel short side, 2/72 mm per pixel; the
+// longest 1-2-5 length within a quarter of the 96-pixel width (0.667 mm) is 0.5 mm = 18 pixels.
+TEST(RenderCli, ScaleBarIsBurnedIntoTheExportOnly) {
+  ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " not built";
+  const std::string scene = std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/basalt_section_ortho.json";
+  const std::string size = " --set render.width=96 --set render.height=72 --set eyepiece.field_number_mm=20";
+  const std::string plain = temp_dir() + "/plain.exr", barred = temp_dir() + "/barred.exr";
+  ASSERT_EQ(run(scene + size + " --out " + plain), 0);
+  ASSERT_EQ(run(scene + size + " --scale-bar --out " + barred), 0);
+  const pmsim::LoadedImage a = pmsim::read_image(plain), b = pmsim::read_image(barred);
+  ASSERT_EQ(a.width, 96);
+  ASSERT_EQ(b.height, 72);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  const int ch = a.channels;
+  int changed = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t i = (static_cast<std::size_t>(y) * a.width + x) * ch + c;
+        if (a.pixels[i] == b.pixels[i]) continue;
+        ++changed;
+        // The bar and its label sit bottom left (8-pixel margin, 7-pixel text): nothing else moves.
+        EXPECT_LT(x, a.width / 2) << y;
+        EXPECT_GE(y, a.height / 2) << x;
+      }
+  EXPECT_GT(changed, 0);
+  // The bar: 2 rows (52, 53 for a 72-row image: 72 − 8 margin − 7 text − 3 gap − 2), white from
+  // x = 8 for exactly the 18 pixels worked out above, black outline after it.
+  auto white = [&](int x, int y) {
+    const std::size_t i = (static_cast<std::size_t>(y) * b.width + x) * ch;
+    return b.pixels[i] == 1.0f && b.pixels[i + 1] == 1.0f && b.pixels[i + 2] == 1.0f;
+  };
+  int run_px = 0;
+  while (white(8 + run_px, 52)) ++run_px;
+  EXPECT_EQ(run_px, 18);
+  EXPECT_FALSE(white(7, 52));
+  // A conoscopic image measures directions, not lengths: bad input, exit 2, no file.
+  const std::string cono = temp_dir() + "/cono.exr";
+  EXPECT_EQ(run(std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/calcite_cono.json --scale-bar --out " + cono), 2);
+  EXPECT_FALSE(fs::exists(cono));
+}
