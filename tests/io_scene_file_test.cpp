@@ -166,3 +166,32 @@ TEST(SceneFile, FuzzFindingsAreInputErrors) {
       },
       "p.json", "sample.x_axis", "[0,0,1]");
 }
+
+// A mineral name that is refused says why: a composition outside 0..100 mol %, a component the
+// series does not have, or an unknown name, whose list of known names includes the aliases.
+TEST(SceneFile, BadMineralCompositionsSayWhatIsWrong) {
+  auto reason_for = [](const std::string& mineral) -> std::string {
+    const json j = {{"sample", {{"mineral", mineral}}}};
+    try {
+      scene_from_json(j, "bad.json");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file, "bad.json");
+      EXPECT_EQ(e.key, "sample.mineral");
+      EXPECT_EQ(e.value, mineral);
+      return e.reason;
+    }
+    ADD_FAILURE() << mineral << " was taken";
+    return "";
+  };
+  const std::string an140 = reason_for("plagioclase:An140");
+  EXPECT_NE(an140.find("outside 0..100 mol %"), std::string::npos) << an140;
+  EXPECT_EQ(an140.find("unknown mineral"), std::string::npos) << "plagioclase is known: " << an140;
+  const std::string xy3 = reason_for("olivine:Xy3");
+  EXPECT_NE(xy3.find("olivine:Fo35"), std::string::npos) << "shows how it is written: " << xy3;
+  EXPECT_EQ(xy3.find("unknown mineral"), std::string::npos) << xy3;
+  const std::string quartz = reason_for("quartz:An10");
+  EXPECT_NE(quartz.find("not a solid-solution series"), std::string::npos) << quartz;
+  const std::string unknown = reason_for("unobtainium");
+  EXPECT_NE(unknown.find("unknown mineral"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("opx = enstatite"), std::string::npos) << "aliases are listed: " << unknown;
+}

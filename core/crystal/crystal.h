@@ -118,6 +118,9 @@ std::vector<std::pair<std::string, std::string>> mineral_aliases();
 // Parses one mineral file; throws InputError naming the file, key and value on bad input.
 Crystal load_mineral_file(const std::string& path);
 std::vector<std::string> mineral_names();  // sorted, lower case
+// Every name a mineral may be given, for error messages: "actinolite, …, zoisite; aliases:
+// cpx = augite, …" (file names, then each alias with the canonical name it stands for).
+std::string known_minerals_text();
 // Constant indices → a constant crystal; applies the index rule of crystal_indices.h, throwing
 // InputError with key "no", "nalpha", … (or "" for the order): the caller prefixes its key path.
 Crystal crystal_from_indices(const CrystalIndices& c);

@@ -333,10 +333,17 @@ const Library& library() {
   return lib;
 }
 
-[[noreturn]] void unknown_mineral(const Library& l, std::string_view name) {
+// "actinolite, aegirine, …; aliases: cpx = augite, garnet = almandine, …": every name taken.
+std::string known_text(const Library& l) {
   std::string known;
   for (const auto& [k, v] : l.by_name) known += (known.empty() ? "" : ", ") + k;
-  throw InputError("", "", std::string(name), "unknown mineral (known: " + known + ")");
+  std::string aliases;
+  for (const auto& [a, target] : l.aliases) aliases += (aliases.empty() ? "" : ", ") + a + " = " + target;
+  return aliases.empty() ? known : known + "; aliases: " + aliases;
+}
+
+[[noreturn]] void unknown_mineral(const Library& l, std::string_view name) {
+  throw InputError("", "", std::string(name), "unknown mineral (known: " + known_text(l) + ")");
 }
 
 std::string trimmed(std::string_view s) {
@@ -357,7 +364,8 @@ double composition_of(const MineralSeries& s, const std::string& base, std::stri
   const std::string example = base + ":" + s.component + "35";
   if (comp != lower_case(s.component) && !complement)
     throw InputError("", "", std::string(name),
-                     "a " + base + " composition is written " + example + " (mol % " + s.component +
+                     std::string(std::string_view("aeiou").find(base.front()) != std::string_view::npos ? "an " : "a ") +
+                         base + " composition is written " + example + " (mol % " + s.component +
                          (s.complement.empty() ? "" : ", or " + s.complement) + ")");
   // Plain decimal digits only: strtod would also take "1e1", "inf" and hexadecimal.
   bool ok = !number.empty() && number.front() != '.' && number.back() != '.';
@@ -473,5 +481,7 @@ std::vector<std::pair<std::string, std::string>> mineral_aliases() {
   const auto& a = library().aliases;
   return {a.begin(), a.end()};
 }
+
+std::string known_minerals_text() { return known_text(library()); }
 
 }  // namespace pmsim

@@ -17,10 +17,15 @@ bool mineral_known(const std::string& name) {
   }
 }
 
-std::string known_minerals_list() {
-  std::string s;
-  for (const std::string& n : mineral_names()) s += (s.empty() ? "" : ", ") + n;
-  return s;
+std::string known_minerals_list() { return known_minerals_text(); }
+
+std::optional<std::string> mineral_name_problem(const std::string& name) {
+  try {
+    canonical_mineral_name(name);
+    return std::nullopt;
+  } catch (const InputError& e) {
+    return e.reason;
+  }
 }
 
 bool medium_known(const std::string& name) {

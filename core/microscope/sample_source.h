@@ -2,6 +2,7 @@
 // Where the sample's data come from: mineral library, custom indices, thin-section files, the
 // mounting medium. Shared by validation (core/io) and the optical set-up, so that both agree on
 // what is a known name.
+#include <optional>
 #include <string>
 
 #include "core/base/asset_locator.h"  // asset_dir(), which the section lookup uses
@@ -11,7 +12,12 @@
 namespace pmsim {
 
 bool mineral_known(const std::string& name);
-std::string known_minerals_list();  // "augite, biotite, ..." for error messages
+std::string known_minerals_list();  // "augite, biotite, ...; aliases: cpx = augite, ..." for error messages
+// Why a mineral name is refused, as the library words it: an unknown name (listing the known ones
+// and the aliases), a composition of a mineral that is no series, or a bad composition
+// ("plagioclase:An140" is outside 0..100 mol %, "olivine:Xy3" is not written Fo or Fa).
+// nullopt when the name is good.
+std::optional<std::string> mineral_name_problem(const std::string& name);
 bool medium_known(const std::string& name);
 // A thin-section name ("granite") or path ("…/granite.json") that resolves to a readable file.
 bool section_known(const std::string& name);

@@ -136,8 +136,8 @@ void check_scene(const Scene& s, const std::string& file) {
   } else {
     // Whatever the sample type: a typo on a section scene must not wait until the user switches
     // to a plate to be reported on a key they did not touch.
-    require(mineral_known(s.sample.mineral), file, "sample.mineral", s.sample.mineral,
-            "unknown mineral (known: " + known_minerals_list() + ")");
+    if (const auto problem = mineral_name_problem(s.sample.mineral))
+      throw InputError(file, "sample.mineral", s.sample.mineral, *problem);
   }
   if (s.sample.cut) check_cut(s, file);
   if (s.sample_in && s.sample.type == SampleType::Section)

@@ -343,8 +343,7 @@ std::vector<double> numbers(const JsonReader& gr, const char* k, int n) {
 }
 
 const Crystal& known_mineral(const JsonReader& r, const char* key, const std::string& name) {
-  if (!mineral_known(name))
-    throw InputError(r.file(), r.path(key), name, "unknown mineral (known: " + known_minerals_list() + ")");
+  if (const auto problem = mineral_name_problem(name)) throw InputError(r.file(), r.path(key), name, *problem);
   return find_mineral(name);
 }
 
