@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Renders the README's images of the shipped thin sections: each section between crossed polars
+# at 4x (NA 0.10) and 40x (NA 0.65), 480 x 360, with the scale bar, into docs/images/. The 4x
+# view is centred on the section; the 40x view on a point where several minerals meet (chosen by
+# eye from --grains output; stage.x_mm, stage.y_mm below).
+# Usage: scripts/section_images.sh [BUILD_DIR]   (default: build)
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+render="${1:-$root/build}/app/pmsim-render"
+scene="$root/assets/scenes/basalt_section_ortho.json"
+declare -A at40=([granite]="-1.5 -0.7" [basalt]="1.5 -0.7" [gabbro]="-3 0.7" [schist]="3 -2")
+for section in granite basalt gabbro schist; do
+  for mag in 4 40; do
+    na=0.10 x=0 y=0
+    [ "$mag" = 40 ] && na=0.65 && read -r x y <<<"${at40[$section]}"
+    "$render" "$scene" --set sample.section="$section" --set objective.magnification="$mag" \
+      --set objective.na="$na" --set stage.x_mm="$x" --set stage.y_mm="$y" \
+      --set render.width=480 --set render.height=360 --scale-bar \
+      --out "$root/docs/images/section_${section}_${mag}x.png"
+  done
+done
