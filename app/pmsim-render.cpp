@@ -31,6 +31,7 @@
 #include "core/microscope/grain_labels.h"
 #include "core/microscope/grain_report.h"
 #include "core/microscope/sample_source.h"
+#include "core/microscope/map_section.h"
 #include "core/microscope/section_map.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
@@ -189,7 +190,7 @@ int main(int argc, char** argv) {
       rgb = std::move(img.rgb);
       meta = pmsim::scene_to_json(scene);
       if (ground_truth) {
-        section = pmsim::load_section(scene.sample.section);
+        section = pmsim::load_scene_section(scene);
         labels = pmsim::grain_label_image(scene, *section);
         microscope_scene = scene;
       }

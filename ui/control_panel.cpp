@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "core/crystal/crystal.h"
+#include "core/microscope/map_section.h"
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
 #include "ui/app.h"
@@ -258,7 +259,7 @@ void App::draw_slide_overview(Scene& edit, bool& changed) {
   // around the point under the crosshair. A click moves the stage there.
   std::shared_ptr<const SectionMap> map;
   try {
-    map = load_section(edit.sample.section);
+    map = load_scene_section(edit);
   } catch (const std::exception&) {
     return;  // reported by the scene check on commit
   }

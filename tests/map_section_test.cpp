@@ -1,0 +1,211 @@
+// EBSD maps as thin sections (issue 13, "Maps as sections"): the map's geometry on the section,
+// the grains reconstructed by misorientation, the orientation clusters, the phase mapping and the
+// non-indexed points, and what the microscope shows of them (extinction, isotropic phases, the
+// c-axis convention of hexagonal phases, the conoscopic figure of a map grain). Every map is a
+// file the test writes with core/ebsd/map_writer.h and reads back as a scene would.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "core/base/input_error.h"
+#include "core/base/units.h"
+#include "core/crystal/euler_angles.h"
+#include "core/ebsd/ebsd_frames.h"
+#include "core/ebsd/grain_reconstruction.h"
+#include "core/ebsd/laue_rotations.h"
+#include "core/ebsd/map_writer.h"
+#include "core/microscope/map_section.h"
+#include "core/microscope/view_geometry.h"
+#include "core/render/progressive_renderer.h"
+#include "tests/ebsd_test_files.h"
+
+using namespace pmsim;
+using pmsim::ebsd_test::input_error_of;
+using pmsim::ebsd_test::ScratchDir;
+
+namespace {
+
+EbsdPhase quartz_phase(int id = 1) {
+  return {id, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 154};
+}
+EbsdPhase calcite_phase(int id) {
+  return {id, "Calcite", "CaCO3", UnitCell{4.99, 4.99, 17.06, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 167};
+}
+EbsdPhase garnet_phase(int id) {
+  return {id, "Garnet", "", UnitCell{11.53, 11.53, 11.53, 90, 90, 90}, CrystalSystem::Cubic, "m-3m", "11", 230};
+}
+
+// A square Oxford map of columns × rows points, step_um apart, every point phase 1 at (φ1, Φ, φ2)°.
+OrientationMap uniform_map(int columns, int rows, double step_um, std::vector<EbsdPhase> phases,
+                           glm::dvec3 e_deg = {0, 0, 0}, EbsdVendor vendor = EbsdVendor::OxfordChannel5) {
+  OrientationMap m;
+  m.vendor = vendor;
+  m.grid = MapGrid::Square;
+  m.columns_odd = m.columns_even = columns;
+  m.rows = rows;
+  m.step_x_um = m.step_y_um = step_um;
+  m.phases = std::move(phases);
+  m.allocate_points();
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    m.phase[i] = 1;
+    m.phi1_rad[i] = static_cast<float>(radians(e_deg.x));
+    m.Phi_rad[i] = static_cast<float>(radians(e_deg.y));
+    m.phi2_rad[i] = static_cast<float>(radians(e_deg.z));
+  }
+  return m;
+}
+
+void set_euler_deg(OrientationMap& m, std::size_t i, double a, double b, double c) {
+  m.phi1_rad[i] = static_cast<float>(radians(a));
+  m.Phi_rad[i] = static_cast<float>(radians(b));
+  m.phi2_rad[i] = static_cast<float>(radians(c));
+}
+
+Scene map_scene(const std::string& path, int size = 32) {
+  Scene s;
+  s.sample.type = SampleType::Section;
+  s.sample.section = path;
+  s.render.width = s.render.height = size;
+  s.render.spp = 1;
+  s.render.wavelengths = 16;
+  s.objective.magnification = 10.0;
+  return s;
+}
+
+double mean_luminance(const RenderImage& img) {
+  double sum = 0.0;
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  for (std::size_t i = 0; i < n; ++i)
+    sum += 0.2126 * img.rgb[3 * i] + 0.7152 * img.rgb[3 * i + 1] + 0.0722 * img.rgb[3 * i + 2];
+  return sum / static_cast<double>(n);
+}
+
+double luminance_at(const RenderImage& img, int x, int y) {
+  const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
+  return 0.2126 * img.rgb[3 * i] + 0.7152 * img.rgb[3 * i + 1] + 0.0722 * img.rgb[3 * i + 2];
+}
+
+}  // namespace
+
+TEST(EbsdMapSection, GeometryOriginAtTheCentreNorthUpStepGivesTheScale) {
+  ScratchDir dir;
+  // 5 × 3 points 10 µm apart; point (column 4, row 0), the top right, is a second phase.
+  OrientationMap m = uniform_map(5, 3, 10.0, {quartz_phase(1), garnet_phase(2)});
+  m.phase[4] = 2;
+  write_ctf(m, dir / "m.ctf");
+  const auto s = load_map_section(dir / "m.ctf", {}, NonIndexed::Medium);
+  ASSERT_TRUE(s->raster);
+  // Extent: the points' extent (40 × 20 µm) plus one step, each point owning its step square.
+  EXPECT_NEAR(s->width_mm, 0.050, 1e-12);
+  EXPECT_NEAR(s->height_mm, 0.030, 1e-12);
+  // The top-right point lies at (+20, +10) µm: x along the map's x, y against it (north up).
+  const int d = s->domain_at({0.020, 0.010});
+  EXPECT_EQ(s->mineral_of_domain(d), "almandine");
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({-0.020, 0.010})), "quartz");
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({0.020, -0.010})), "quartz");
+  // The square the point owns reaches half a step (exclusive) in each direction; beyond the map
+  // the slide.
+  EXPECT_EQ(s->domain_at({0.0249, 0.0149}), d);
+  EXPECT_EQ(s->domain_at({0.0251, 0.010}), SectionMap::kSlideDomain);
+  EXPECT_EQ(s->domain_at({0.020, 0.0151}), SectionMap::kSlideDomain);
+}
+
+TEST(EbsdMapSection, HexagonalGridShiftsEverySecondRowByHalfAStep) {
+  ScratchDir dir;
+  OrientationMap m;
+  m.vendor = EbsdVendor::EdaxTsl;
+  m.grid = MapGrid::Hexagonal;
+  m.columns_odd = 3;
+  m.columns_even = 2;
+  m.rows = 3;
+  m.step_x_um = 10.0;
+  m.step_y_um = 10.0 * std::sqrt(3.0) / 2.0;
+  m.phases = {quartz_phase(1), garnet_phase(2)};
+  m.allocate_points();
+  for (std::size_t i = 0; i < m.size(); ++i) m.phase[i] = 1;
+  m.phase[3] = 2;  // the second row's first point, at x = 5 µm
+  write_ang(m, dir / "h.ang");
+  const auto s = load_map_section(dir / "h.ang", {}, NonIndexed::Medium);
+  // Points' extent 20 µm × √3·10 µm, centred: the second row's first point at (5 − 10, 0) µm.
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({-0.005, 0.0})), "almandine");
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({-0.0095, 0.0})), "almandine");  // 4.5 µm left of it
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({-0.0105, 0.0})), "slide");      // beyond its brick
+  EXPECT_EQ(s->mineral_of_domain(s->domain_at({-0.005, 0.006})), "quartz");    // the row above
+}
+
+TEST(EbsdMapSection, GrainsSplitAtFifteenDegreesAndJoinAtTwo) {
+  ScratchDir dir;
+  for (const double delta : {15.0, 2.0}) {
+    // Left half (φ1 = 10°), right half turned `delta` about the section normal (φ1 = 10° + δ).
+    OrientationMap m = uniform_map(8, 4, 5.0, {quartz_phase(1)}, {10, 30, 0});
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (i % 8 >= 4) set_euler_deg(m, i, 10 + delta, 30, 0);
+    const std::string path = dir / ("g" + std::to_string(static_cast<int>(delta)) + ".ctf");
+    write_ctf(m, path);
+    const auto s = load_map_section(path, {}, NonIndexed::Medium);
+    EXPECT_EQ(s->grains.size(), delta > 10 ? 2u : 1u) << delta;
+    // Within a grain the halves differ by δ = 2° > the 0.5° cluster tolerance: two clusters.
+    if (delta < 10) {
+      EXPECT_EQ(s->grains[0].zones.size(), 2u);
+      EXPECT_NE(s->domain_at({-0.005, 0.0}), s->domain_at({0.005, 0.0}));
+      EXPECT_EQ(s->grain_label(s->domain_at({-0.005, 0.0})), s->grain_label(s->domain_at({0.005, 0.0})));
+    }
+  }
+}
+
+TEST(EbsdMapSection, MisorientationIsSymmetryAware) {
+  // Quartz (-3m): a 120° turn about c is the same crystal, so two halves related by it are one
+  // grain and one cluster; 60° about c is not a symmetry of -3m (a Dauphiné twin): two grains.
+  ScratchDir dir;
+  for (const double turn : {120.0, 60.0}) {
+    OrientationMap m = uniform_map(6, 2, 5.0, {quartz_phase(1)}, {0, 0, 20});
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (i % 6 >= 3) set_euler_deg(m, i, 0, 0, 20 + turn);
+    const std::string path = dir / ("s" + std::to_string(static_cast<int>(turn)) + ".ctf");
+    write_ctf(m, path);
+    const auto s = load_map_section(path, {}, NonIndexed::Medium);
+    EXPECT_EQ(s->grains.size(), turn == 120.0 ? 1u : 2u) << turn;
+  }
+  EXPECT_EQ(laue_rotations("m-3m").size(), 24u);
+  EXPECT_EQ(laue_rotations("6/mmm").size(), 12u);
+  EXPECT_EQ(laue_rotations("-3m").size(), 6u);
+  EXPECT_EQ(laue_rotations("2/m").size(), 2u);
+}
+
+TEST(EbsdMapSection, UnmappedPhaseIsAnInputErrorNamingItAndHowToMapIt) {
+  ScratchDir dir;
+  OrientationMap m = uniform_map(3, 3, 5.0, {quartz_phase(1), garnet_phase(2)});
+  m.phases[1].name = "Unobtainium 7";
+  m.phase[4] = 2;
+  write_ctf(m, dir / "u.ctf");
+  const InputError e = input_error_of([&] { load_map_section(dir / "u.ctf", {}, NonIndexed::Medium); });
+  EXPECT_NE(std::string(e.what()).find("Unobtainium 7"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("sample.phases"), std::string::npos) << e.what();
+  // Mapped explicitly (to a composition, to none, to isotropic) it loads.
+  EXPECT_EQ(load_map_section(dir / "u.ctf", {{"Unobtainium 7", "olivine:Fo90"}}, NonIndexed::Medium)->grains.size(), 2u);
+  const auto none = load_map_section(dir / "u.ctf", {{"Unobtainium 7", "none"}}, NonIndexed::Medium);
+  EXPECT_EQ(none->domain_at({0, 0}), SectionMap::kMediumDomain);
+  const auto iso = load_map_section(dir / "u.ctf", {{"unobtainium 7", "isotropic"}}, NonIndexed::Medium);
+  EXPECT_EQ(iso->crystal_of_domain(iso->domain_at({0, 0})), nullptr);
+  EXPECT_EQ(iso->mineral_of_domain(iso->domain_at({0, 0})), "isotropic");
+}
+
+TEST(EbsdMapSection, NonIndexedPointsShowTheMediumOrNothing) {
+  ScratchDir dir;
+  OrientationMap m = uniform_map(9, 9, 20.0, {quartz_phase(1)}, {90, 90, 0});
+  for (std::size_t i = 0; i < m.size(); ++i) m.phase[i] = 0;  // all non-indexed
+  write_ctf(m, dir / "n.ctf");
+  Scene s = map_scene(dir / "n.ctf");
+  s.analyzer_in = false;  // plane light: the medium is clear, an opaque point black
+  s.objective.magnification = 100.0;  // a 0.2 mm field: the 0.18 mm map fills its centre
+  const RenderImage a = ProgressiveRenderer::render(s);
+  s.sample.nonindexed = NonIndexed::Black;
+  const RenderImage b = ProgressiveRenderer::render(s);
+  // Plane light through the mounting medium passes most of the lamp (> 0.5 of white); an opaque
+  // point passes nothing (exactly 0: no unit is evaluated for it).
+  EXPECT_GT(luminance_at(a, 16, 16), 0.5);
+  EXPECT_EQ(luminance_at(b, 16, 16), 0.0);
+}
