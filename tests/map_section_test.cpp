@@ -209,3 +209,117 @@ TEST(EbsdMapSection, NonIndexedPointsShowTheMediumOrNothing) {
   EXPECT_GT(luminance_at(a, 16, 16), 0.5);
   EXPECT_EQ(luminance_at(b, 16, 16), 0.0);
 }
+
+TEST(EbsdMapSection, QuartzWithCAlongMapXIsExtinctAt0And90AndBrightestAt45) {
+  ScratchDir dir;
+  // Oxford Bunge (90°, 90°, 0°): the crystal's z (c) along the specimen's x, the map's x.
+  write_ctf(uniform_map(24, 24, 50.0, {quartz_phase(1)}, {90, 90, 0}), dir / "q.ctf");
+  Scene s = map_scene(dir / "q.ctf");
+  s.objective.magnification = 40.0;  // a 0.5 mm field inside the 1.2 mm map
+  std::vector<double> y;
+  for (const double stage : {0.0, 22.5, 45.0, 67.5, 90.0}) {
+    s.stage_deg = stage;
+    y.push_back(mean_luminance(ProgressiveRenderer::render(s)));
+  }
+  // Extinct: the slow direction (c) parallel to the polarizer leaves the light polarised; only
+  // the oblique rays of the NA 0.65 objective are not at extinction, and parallel-light
+  // rendering (spp 1, orthoscopic) has none: below 1e-4 of white, 1/3000 of the 45° value.
+  EXPECT_LT(y[0], 1e-4);
+  EXPECT_LT(y[4], 1e-4);
+  // Intensity ∝ sin²(2θ): 22.5° and 67.5° give half of 45°'s (±10 % for the spectral weighting of
+  // first-order white, whose sin² term does not depend on θ).
+  EXPECT_GT(y[2], 0.1) << "30 µm quartz, Γ ≈ 270 nm: first-order white";
+  EXPECT_NEAR(y[1] / y[2], 0.5, 0.05);
+  EXPECT_NEAR(y[3] / y[2], 0.5, 0.05);
+}
+
+TEST(EbsdMapSection, CubicPhaseIsBlackBetweenCrossedPolarsInEveryOrientation) {
+  ScratchDir dir;
+  // Garnet in six orientations, one per band of the map.
+  OrientationMap m = uniform_map(12, 6, 50.0, {garnet_phase(1)});
+  const double e[6][3] = {{0, 0, 0}, {30, 40, 50}, {90, 90, 0}, {123, 17, 300}, {200, 70, 10}, {350, 120, 45}};
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const int r = m.row_of(i);
+    set_euler_deg(m, i, e[r][0], e[r][1], e[r][2]);
+  }
+  write_ctf(m, dir / "g.ctf");
+  const auto sec = load_map_section(dir / "g.ctf", {}, NonIndexed::Medium);
+  EXPECT_EQ(sec->grains.size(), 6u);
+  for (const SectionGrain& g : sec->grains) EXPECT_EQ(g.zones.size(), 1u) << "isotropic: one domain per grain";
+  Scene s = map_scene(dir / "g.ctf");
+  s.objective.magnification = 40.0;
+  for (const double stage : {0.0, 30.0, 45.0}) {
+    s.stage_deg = stage;
+    // Isotropic: no retardation, the analyser passes nothing (exactly 0 in parallel light; the
+    // bound allows float rounding).
+    EXPECT_LT(mean_luminance(ProgressiveRenderer::render(s)), 1e-6) << stage;
+  }
+}
+
+TEST(EbsdMapSection, HexagonalCAxisConventionBothVendors) {
+  ScratchDir dir;
+  // The same Bunge angles (90°, 90°, 0°) put c along each vendor's Euler x: Oxford's is the
+  // map's x (east), EDAX's the map's y (south) (core/ebsd/ebsd_frames.h).
+  write_ctf(uniform_map(4, 4, 10.0, {quartz_phase(1)}, {90, 90, 0}), dir / "o.ctf");
+  write_ang(uniform_map(4, 4, 10.0, {quartz_phase(1)}, {90, 90, 0}, EbsdVendor::EdaxTsl), dir / "e.ang");
+  const auto o = load_map_section(dir / "o.ctf", {}, NonIndexed::Medium);
+  const auto e = load_map_section(dir / "e.ang", {}, NonIndexed::Medium);
+  ASSERT_TRUE(o->grains[0].lattice_to_section && e->grains[0].lattice_to_section);
+  const glm::dvec3 co = (*o->grains[0].lattice_to_section)[2], ce = (*e->grains[0].lattice_to_section)[2];
+  // Float angles (1e-7 rad) and the quaternion round trip: 1e-6.
+  EXPECT_NEAR(std::abs(co.x), 1.0, 1e-6);
+  EXPECT_NEAR(std::abs(ce.y), 1.0, 1e-6);
+  // And the microscope sees it: at stage 45° the gypsum plate (slow direction NE–SW, 550 nm) adds
+  // to a c (slow, quartz is positive) lying NE (Oxford: east turned 45° counter-clockwise) and
+  // subtracts from one lying NW (EDAX: north–south turned 45°). In a 10 µm slab (Γ ≈ 90 nm):
+  // 640 nm, second-order blue, against 460 nm, first-order orange.
+  auto blue_minus_red = [&](const std::string& path) {
+    Scene s = map_scene(path);
+    s.objective.magnification = 100.0;  // the 40 µm map fills the 0.2 mm field's centre
+    s.stage_deg = 45.0;
+    s.sample.thickness_um = 10.0;
+    s.compensator = Compensator::Gypsum;
+    const RenderImage img = ProgressiveRenderer::render(s);
+    const std::size_t i = static_cast<std::size_t>(16) * img.width + 16;
+    return img.rgb[3 * i + 2] - img.rgb[3 * i];
+  };
+  EXPECT_GT(blue_minus_red(dir / "o.ctf"), 0.05);
+  EXPECT_LT(blue_minus_red(dir / "e.ang"), -0.05);
+}
+
+TEST(EbsdMapSection, ConoscopicFigureIsOfTheGrainUnderTheCrosshair) {
+  ScratchDir dir;
+  // Left half: c normal to the section (Φ = 0); right half: c along the map's x.
+  OrientationMap m = uniform_map(40, 20, 25.0, {quartz_phase(1)}, {0, 0, 0});
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (i % 40 >= 20) set_euler_deg(m, i, 90, 90, 0);
+  write_ctf(m, dir / "c.ctf");
+  auto figure = [&](Scene s) {
+    s.mode = ViewMode::Cono;
+    s.bertrand_in = true;
+    s.objective.magnification = 40.0;
+    s.objective.na = 0.65;
+    s.render.width = s.render.height = 48;
+    return ProgressiveRenderer::render(s);
+  };
+  Scene plate;
+  plate.sample.mineral = "quartz";
+  const auto diff = [](const RenderImage& a, const RenderImage& b) {
+    double d = 0.0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) d = std::max(d, static_cast<double>(std::abs(a.rgb[i] - b.rgb[i])));
+    return d;
+  };
+  Scene on_left = map_scene(dir / "c.ctf");
+  on_left.stage.x_mm = -0.25;
+  Scene on_right = on_left;
+  on_right.stage.x_mm = 0.25;
+  plate.sample.optic_axis = {0, 0, 1};
+  const RenderImage axis_plate = figure(plate), left = figure(on_left);
+  plate.sample.optic_axis = {1, 0, 0};
+  const RenderImage flash_plate = figure(plate), right = figure(on_right);
+  // The map grain's figure is the plate's of the same orientation and thickness (the same
+  // evaluation; 1e-4 allows the float rounding of the map's angles), and not the other grain's.
+  EXPECT_LT(diff(left, axis_plate), 1e-4);
+  EXPECT_LT(diff(right, flash_plate), 1e-4);
+  EXPECT_GT(diff(left, right), 0.1);
+}
