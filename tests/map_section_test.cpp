@@ -9,6 +9,7 @@
 #include <set>
 
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/base/input_error.h"
 #include "core/base/units.h"
@@ -17,6 +18,7 @@
 #include "core/ebsd/grain_reconstruction.h"
 #include "core/ebsd/laue_rotations.h"
 #include "core/ebsd/map_writer.h"
+#include "core/io/scene_file.h"
 #include "core/microscope/map_section.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/progressive_renderer.h"
@@ -30,9 +32,6 @@ namespace {
 
 EbsdPhase quartz_phase(int id = 1) {
   return {id, "Quartz", "SiO2", UnitCell{4.913, 4.913, 5.405, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 154};
-}
-EbsdPhase calcite_phase(int id) {
-  return {id, "Calcite", "CaCO3", UnitCell{4.99, 4.99, 17.06, 90, 90, 120}, CrystalSystem::Trigonal, "-3m", "7", 167};
 }
 EbsdPhase garnet_phase(int id) {
   return {id, "Garnet", "", UnitCell{11.53, 11.53, 11.53, 90, 90, 90}, CrystalSystem::Cubic, "m-3m", "11", 230};
@@ -322,4 +321,49 @@ TEST(EbsdMapSection, ConoscopicFigureIsOfTheGrainUnderTheCrosshair) {
   EXPECT_LT(diff(left, axis_plate), 1e-4);
   EXPECT_LT(diff(right, flash_plate), 1e-4);
   EXPECT_GT(diff(left, right), 0.1);
+}
+
+TEST(EbsdMapSection, SceneKeysRoundTripAndRefuseBadValues) {
+  const nlohmann::json j = nlohmann::json::parse(
+      R"({"sample": {"phases": {"Garnet 2": "almandine", "Epoxy": "none"}, "nonindexed": "black"},
+          "render": {"native": "on"}})");
+  const Scene s = scene_from_json(j, "f.json");
+  EXPECT_EQ(s.sample.phases.at("Garnet 2"), "almandine");
+  EXPECT_EQ(s.sample.phases.at("Epoxy"), "none");
+  EXPECT_EQ(s.sample.nonindexed, NonIndexed::Black);
+  EXPECT_TRUE(s.render.native);
+  const Scene back = scene_from_json(scene_to_json(s), "saved");
+  EXPECT_EQ(back.sample.phases, s.sample.phases);
+  EXPECT_EQ(back.sample.nonindexed, NonIndexed::Black);
+  EXPECT_TRUE(back.render.native);
+  // Defaults are not written: every other scene saves as before.
+  const nlohmann::json d = scene_to_json(Scene{});
+  EXPECT_FALSE(d["sample"].contains("phases"));
+  EXPECT_FALSE(d["sample"].contains("nonindexed"));
+  EXPECT_FALSE(d["render"].contains("native"));
+  Scene t;
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+           {"sample.nonindexed=grey", "sample.nonindexed"},
+           {"render.native=maybe", "render.native"},
+           {R"(sample.phases={"Garnet": 3})", "sample.phases"},
+           {"sample.phases=[1]", "sample.phases"}}) {
+    const InputError e = input_error_of([&] { apply_setting(t, set); });
+    EXPECT_EQ(e.key, key) << set;
+  }
+}
+
+TEST(EbsdMapSection, InteractiveRestartRefusesAnUnmappedPhaseAndAcceptsItMapped) {
+  ScratchDir dir;
+  OrientationMap m = uniform_map(3, 3, 5.0, {quartz_phase(1), garnet_phase(2)});
+  m.phases[1].name = "Unobtainium 7";
+  m.phase[4] = 2;
+  write_ctf(m, dir / "u.ctf");
+  Scene s = map_scene(dir / "u.ctf");
+  ProgressiveRenderer r;
+  // The app's path: restart() refuses it as it refuses a bad key (the UI shows the message).
+  const InputError e = input_error_of([&] { r.restart(s); });
+  EXPECT_NE(std::string(e.what()).find("Unobtainium 7"), std::string::npos) << e.what();
+  s.sample.phases = {{"Unobtainium 7", "isotropic"}};
+  r.restart(s);
+  EXPECT_TRUE(r.wait(60.0));
 }
