@@ -367,3 +367,28 @@ TEST(EbsdMapSection, InteractiveRestartRefusesAnUnmappedPhaseAndAcceptsItMapped)
   r.restart(s);
   EXPECT_TRUE(r.wait(60.0));
 }
+
+TEST(EbsdMapSection, UnduloseExtinctionSurvivesWithinOneGrain) {
+  ScratchDir dir;
+  // One quartz grain, c in the section turning steadily 0.2° per point from east (left) to 7.8°
+  // (right): neighbours 0.2° apart, one grain; more than 0.5° across, several clusters.
+  OrientationMap m = uniform_map(40, 10, 10.0, {quartz_phase(1)}, {90, 90, 0});
+  for (std::size_t i = 0; i < m.size(); ++i) set_euler_deg(m, i, 90 + 0.2 * static_cast<double>(i % 40), 90, 0);
+  write_ctf(m, dir / "b.ctf");
+  const auto s = load_map_section(dir / "b.ctf", {}, NonIndexed::Medium);
+  ASSERT_EQ(s->grains.size(), 1u);
+  // Leader clusters of 0.5° over 7.8°: at least 7.8 / 1.0 (a cluster spans at most twice the
+  // tolerance) and at most one per column.
+  EXPECT_GE(s->grains[0].zones.size(), 8u);
+  EXPECT_LE(s->grains[0].zones.size(), 40u);
+  Scene sc = map_scene(dir / "b.ctf", 64);
+  sc.objective.magnification = 40.0;  // 0.5 mm field: the 0.4 mm map spans pixels ≈ 6…57
+  const RenderImage img = ProgressiveRenderer::render(sc);
+  const double left = luminance_at(img, 8, 32), right = luminance_at(img, 55, 32);
+  // Stage 0°: the left end is at extinction (c ∥ polarizer, within the 0.5° tolerance: leak
+  // ≤ sin²(1°) = 3·10⁻⁴ of the 45° intensity), the right end 7.4–7.8° off it: sin²(2·7.5°) ≈ 0.067
+  // of the 45° intensity (≈ 0.3, first-order white), so ≥ 0.01.
+  EXPECT_LT(left, 1e-3);
+  EXPECT_GT(right, 0.01);
+  EXPECT_GT(right, 20.0 * left);
+}
