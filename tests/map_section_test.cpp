@@ -392,3 +392,29 @@ TEST(EbsdMapSection, UnduloseExtinctionSurvivesWithinOneGrain) {
   EXPECT_GT(right, 0.01);
   EXPECT_GT(right, 20.0 * left);
 }
+
+TEST(EbsdMapSection, GridNeighboursFourOnSquareSixOnHexagonal) {
+  OrientationMap sq = uniform_map(5, 5, 1.0, {quartz_phase(1)});
+  std::size_t nb[6];
+  EXPECT_EQ(grid_neighbours(sq, 12, nb), 4);  // interior
+  EXPECT_EQ(grid_neighbours(sq, 0, nb), 2);   // corner
+  OrientationMap hx;
+  hx.grid = MapGrid::Hexagonal;
+  hx.columns_odd = 5;
+  hx.columns_even = 4;
+  hx.rows = 5;
+  hx.step_x_um = 1.0;
+  hx.step_y_um = std::sqrt(3.0) / 2.0;
+  hx.allocate_points();
+  // Row 2 (unshifted, starts at index 9), column 2: neighbours at distance one step exactly.
+  const std::size_t i = hx.row_start(2) + 2;
+  const int k = grid_neighbours(hx, i, nb);
+  ASSERT_EQ(k, 6);
+  for (int t = 0; t < k; ++t)
+    EXPECT_NEAR(std::hypot(hx.x_um(nb[t]) - hx.x_um(i), hx.y_um(nb[t]) - hx.y_um(i)), 1.0, 1e-12) << t;
+  // A shifted row's point (row 1, column 1) too.
+  const std::size_t j = hx.row_start(1) + 1;
+  ASSERT_EQ(grid_neighbours(hx, j, nb), 6);
+  for (int t = 0; t < 6; ++t)
+    EXPECT_NEAR(std::hypot(hx.x_um(nb[t]) - hx.x_um(j), hx.y_um(nb[t]) - hx.y_um(j)), 1.0, 1e-12) << t;
+}
