@@ -33,6 +33,9 @@
 #include "core/render/scale_bar.h"
 #include "core/microscope/grain_report.h"
 #include "core/microscope/sample_source.h"
+#include "core/ebsd/read_orientation_map.h"
+#include "core/microscope/map_section.h"
+#include "core/microscope/native_resolution.h"
 #include "core/microscope/section_map.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
@@ -181,6 +184,9 @@ int main(int argc, char** argv) {
       pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
       for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       pmsim::apply_settings(scene, args.sets);
+      // render.native=on on an EBSD map: one pixel per point (checked like any --set size).
+      scene = pmsim::native_resolution_scene(scene);
+      if (scene.render.native) pmsim::validate_scene(scene, path);
       if (ground_truth && !(scene.sample_in && scene.sample.type == pmsim::SampleType::Section)) {
         const nlohmann::json saved = pmsim::scene_to_json(scene);
         throw pmsim::InputError(path, scene.sample_in ? "sample.type" : "sample.present",
@@ -194,6 +200,11 @@ int main(int argc, char** argv) {
         throw pmsim::InputError(path, "mode", "cono", "--scale-bar needs the orthoscopic view (mode=ortho)");
       if (args.scale_bar && scene.bertrand_in)
         throw pmsim::InputError(path, "bertrand", "in", "--scale-bar needs the Bertrand lens out (bertrand=out)");
+      // An EBSD map's reader warnings (a truncated file: both point counts).
+      if (scene.sample_in && scene.sample.type == pmsim::SampleType::Section &&
+          pmsim::is_orientation_map_path(scene.sample.section))
+        if (const pmsim::MapSectionFacts* f = pmsim::map_section_facts(*pmsim::load_scene_section(scene)))
+          for (const std::string& w : f->warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       const bool tty = ::isatty(STDERR_FILENO);
       pmsim::RenderImage img = pmsim::ProgressiveRenderer::render(
           scene, 0, tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr);
@@ -206,7 +217,7 @@ int main(int argc, char** argv) {
         pmsim::burn_scale_bar(rgb, width, height,
                               pmsim::choose_scale_bar(pmsim::mm_per_pixel(scene, width, height), width));
       if (ground_truth) {
-        section = pmsim::load_section(scene.sample.section);
+        section = pmsim::load_scene_section(scene);
         labels = pmsim::grain_label_image(scene, *section);
         microscope_scene = scene;
       }

@@ -7,6 +7,8 @@
 #include <imgui.h>
 
 #include "core/crystal/crystal.h"
+#include "core/ebsd/read_orientation_map.h"
+#include "core/microscope/map_section.h"
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
 #include "ui/app.h"
@@ -174,7 +176,14 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
   changed |= combo_enum("Type", s.type, {"plate", "wedge", "thin section"});
 
   if (s.type == SampleType::Section) {
-    static std::vector<std::string> sections = list_asset_stems("sections", ".json");
+    // Section files, then the EBSD maps shipped in assets/ebsd (by file name, extension kept:
+    // sample.section tells a map by it); any other map by its path.
+    static const std::vector<std::string> sections = [] {
+      std::vector<std::string> v = list_asset_stems("sections", ".json");
+      for (const char* ext : {".ctf", ".ang"})
+        for (const std::string& m : list_asset_stems("ebsd", ext)) v.push_back(m + ext);
+      return v;
+    }();
     if (ImGui::BeginCombo("Section", s.section.c_str())) {
       for (const auto& name : sections)
         if (ImGui::Selectable(name.c_str(), name == s.section)) {
@@ -183,6 +192,11 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
         }
       ImGui::EndCombo();
     }
+    changed |= input_text("Section or map file", s.section);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("a thin-section .json, or an EBSD orientation map .ctf (Oxford) / .ang (EDAX); Enter opens it");
+    if (is_orientation_map_path(s.section))
+      changed |= combo_enum("Non-indexed points", s.nonindexed, {"mounting medium", "black"});
     changed |= slider_double("Thickness", s.thickness_um, 1.0, 100.0, "%.1f um");
     draw_slide_overview(edit, changed);
     return;
@@ -258,7 +272,7 @@ void App::draw_slide_overview(Scene& edit, bool& changed) {
   // around the point under the crosshair. A click moves the stage there.
   std::shared_ptr<const SectionMap> map;
   try {
-    map = load_section(edit.sample.section);
+    map = load_scene_section(edit);
   } catch (const std::exception&) {
     return;  // reported by the scene check on commit
   }

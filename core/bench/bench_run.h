@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/bench/ebsd_load.h"
+#include "core/bench/ebsd_render.h"
 #include "core/bench/lens_throughput.h"
 #include "core/bench/process_start.h"
 
@@ -56,6 +57,7 @@ struct BenchReport {
   std::vector<ThroughputResult> throughput;
   std::optional<ProcessStartResult> process_start;
   std::vector<EbsdLoadResult> ebsd_load;
+  std::optional<EbsdRenderResult> ebsd_render;  // the same map size as a section: load, first, converged
   std::vector<std::string> notes;
   double total_s = 0.0;
   double load_average = 0.0;  // 1-minute load average at the end of the run (/proc/loadavg)

@@ -105,7 +105,8 @@ std::optional<std::string> resolve_automatically(std::string_view name, const st
 
 std::string how_to_map(const std::string& name) {
   return "map it in the scene with \"sample\": {\"phases\": {\"" + name +
-         "\": \"<mineral>\"}}, the mineral a library name (quartz, olivine, …), a composition "
+         "\": \"<mineral>\"}} (on the command line: --set 'sample.phases={\"" + name +
+         "\": \"<mineral>\"}'), the mineral a library name (quartz, olivine, …), a composition "
          "(olivine:Fo90), \"isotropic\" or \"none\"";
 }
 

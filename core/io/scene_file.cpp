@@ -46,6 +46,7 @@ std::string enum_name(E e, const NameTable<E>& names) {
 const NameTable<ViewMode> kModes = {{"ortho", ViewMode::Ortho}, {"cono", ViewMode::Cono}};
 const NameTable<SampleType> kSampleTypes = {
     {"plate", SampleType::Plate}, {"wedge", SampleType::Wedge}, {"section", SampleType::Section}};
+const NameTable<NonIndexed> kNonIndexed = {{"medium", NonIndexed::Medium}, {"black", NonIndexed::Black}};
 const NameTable<Compensator> kCompensators = {{"none", Compensator::None},
                                               {"gypsum", Compensator::Gypsum},
                                               {"mica", Compensator::Mica},
@@ -94,6 +95,27 @@ SampleCut as_cut(const json& v) {
     throw BadValue{"north " + c.north + ": " + b.why};
   }
   return c;
+}
+
+// sample.phases: {"<phase name in the map file>": "<mineral>", …}, every value a string (which
+// minerals they name is checked when the map is read: core/ebsd/phase_names.h).
+std::map<std::string, std::string> as_phases(const json& v) {
+  if (!v.is_object()) throw BadValue{"expected {\"<phase name in the file>\": \"<mineral>\", ...}"};
+  std::map<std::string, std::string> m;
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    if (!it.value().is_string()) throw BadValue{"phase '" + it.key() + "': expected a mineral name (a string)"};
+    m[it.key()] = it.value().get<std::string>();
+  }
+  return m;
+}
+
+// render.native: on|off (booleans accepted too).
+bool as_on_off(const json& v) {
+  if (v.is_boolean()) return v.get<bool>();
+  const std::string s = lower_string_value(v);
+  if (s == "on") return true;
+  if (s == "off") return false;
+  throw BadValue{"expected \"on\" or \"off\""};
 }
 
 json crystal_json(const CrystalIndices& c) {
@@ -182,6 +204,14 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.sample.section; }},
       {"sample.medium", [](Scene& s, const json& v) { s.sample.medium = as_string(v); },
        [](const Scene& s) -> json { return s.sample.medium; }},
+      // The EBSD map keys are written only when they differ from the default, so that the saved
+      // form (and image metadata) of every other scene stays as it was.
+      {"sample.phases", [](Scene& s, const json& v) { s.sample.phases = as_phases(v); },
+       [](const Scene& s) -> json { return s.sample.phases.empty() ? json(nullptr) : json(s.sample.phases); }},
+      {"sample.nonindexed", [](Scene& s, const json& v) { s.sample.nonindexed = as_enum(v, kNonIndexed); },
+       [](const Scene& s) -> json {
+         return s.sample.nonindexed == NonIndexed::Medium ? json(nullptr) : json(enum_name(s.sample.nonindexed, kNonIndexed));
+       }},
       {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
        [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
       {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },
@@ -201,6 +231,8 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
       {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
        [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
+      {"render.native", [](Scene& s, const json& v) { s.render.native = as_on_off(v); },
+       [](const Scene& s) -> json { return s.render.native ? json("on") : json(nullptr); }},
       {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },

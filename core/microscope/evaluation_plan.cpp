@@ -6,6 +6,7 @@
 #include "core/materials/medium.h"
 #include "core/microscope/lens_ghosts.h"
 #include "core/microscope/lens_model_difference.h"
+#include "core/microscope/map_section.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/view_geometry.h"
 
@@ -84,6 +85,15 @@ std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene
     policy.ghost_condenser_percent = 100.0 * ghosts.condenser_energy / std::max<std::size_t>(1, lit);
   }
   plan->model_report_ = model_report(policy, plan->view_);
+  // An EBSD map: what the evaluation reduced it to (core/microscope/map_section.h).
+  if (const SectionMap* s = plan->section())
+    if (const MapSectionFacts* f = map_section_facts(*s))
+      plan->model_report_ += "; EBSD map: " + std::to_string(f->points) + " points (" + std::to_string(f->indexed) +
+                             " indexed), " + std::to_string(f->grains) + " grains (boundaries > " +
+                             std::to_string(static_cast<int>(kGrainBoundaryDeg)) + "°), " +
+                             std::to_string(f->clusters) + " orientation clusters (within " +
+                             std::to_string(kClusterToleranceDeg).substr(0, 3) + "°): " +
+                             std::to_string(f->domains) + " optical domains";
   return plan;
 }
 

@@ -25,10 +25,14 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
   out.unit_exact.assign(units.size(), 0);
   const TrainState train = make_train(scene, plan.compensator(), 550.0);  // its directions only
   // Anchors prepared once per domain.
+  // In parallel: an EBSD map has 10⁴ domains and more (each anchor independent, the same values
+  // in any order).
   std::vector<std::array<PreparedPlate, 3>> anchors(domains.size());
-  for (std::size_t d = 0; d < domains.size(); ++d)
-    if (domains[d].crystal)
-      for (int a = 0; a < 3; ++a) anchors[d][a] = plan.prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, domains.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t d = r.begin(); d != r.end(); ++d)
+      if (domains[d].crystal)
+        for (int a = 0; a < 3; ++a) anchors[d][a] = plan.prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  });
   // A conoscopic figure of a uniaxial plate cut ⟂ its optic axis: a radial table of fits.
   RadialModalTable radial;
   // The table costs kEntries fits plus its checks; the direct way one fit per unit: the table

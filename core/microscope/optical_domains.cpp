@@ -4,6 +4,7 @@
 
 #include "core/base/units.h"
 #include "core/crystal/crystal_cut.h"
+#include "core/microscope/map_section.h"
 
 namespace pmsim {
 
@@ -25,13 +26,14 @@ OpticalDomains optical_domains(const Scene& scene) {
   if (!scene.sample_in) {
     out.domains.push_back({nullptr, glm::dmat3(1.0), scene.sample.thickness_um, "empty stage"});
   } else if (scene.sample.type == SampleType::Section) {
-    out.section = load_section(scene.sample.section);
+    out.section = load_scene_section(scene);
     // Slide and mounting medium (domains 0, 1) carry no crystal: isotropic, dark between
     // crossed polars.
     for (int d = 0; d < out.section->domain_count(); ++d)
       out.domains.push_back({out.section->crystal_of_domain(d),
                              rotate_stage(out.section->orientation_of_domain(d), stage_rad),
-                             scene.sample.thickness_um, out.section->mineral_of_domain(d)});
+                             scene.sample.thickness_um, out.section->mineral_of_domain(d),
+                             out.section->is_opaque(d)});
   } else {
     const Crystal* c;
     if (scene.sample.crystal) {

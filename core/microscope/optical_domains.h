@@ -21,12 +21,15 @@ struct OpticalDomain {
   glm::dmat3 crystal_to_lab{1.0};    // stage rotation applied
   double thickness_um = 0.0;
   std::string mineral;
+  bool opaque = false;  // passes no light (an EBSD map's non-indexed points with sample.nonindexed=black)
 };
 
 struct OpticalDomains {
   std::vector<OpticalDomain> domains;
   std::shared_ptr<Crystal> custom_crystal;    // sample.crystal, owned here (a domain points to it)
   std::shared_ptr<const SectionMap> section;  // the grain map of a thin section on the stage; else null
+
+  bool opaque(int domain) const { return domains[domain].opaque; }
 
   // The domain a sample-frame point shows: 0 but on a thin section.
   int domain_at_sample(const glm::dvec2& sample_point) const {

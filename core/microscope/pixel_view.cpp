@@ -70,7 +70,8 @@ class FieldUnits {
       rb.add(i0, w * (1 - frac));
       rb.add(i0 + 1, w * frac);
     } else {
-      rb.add(domains_.domain_at_sample(to_section_(f)), w);
+      const int d = domains_.domain_at_sample(to_section_(f));
+      if (!domains_.opaque(d)) rb.add(d, w);  // an opaque point adds no light: the pixel darkens by its share
     }
   }
 
@@ -124,7 +125,7 @@ std::optional<PixelView> conoscopic_figure_view(const Scene& scene, const Optica
   view.refs.reserve(n_lit);
   for (std::size_t i = 0; i < k_px.size(); ++i) {
     view.pixel_offset[i] = static_cast<int>(view.refs.size());
-    if (!lit_px[i]) continue;
+    if (!lit_px[i] || domains.opaque(dom)) continue;  // an opaque point under the crosshair: no figure
     EvalUnit u;
     u.domain = dom;
     u.thickness_um = d;
@@ -227,7 +228,12 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
       for (int x = 0; x < W; ++x) {
         rb.tmp.clear();
         if (section_map && interior(x, y)) {
-          rb.tmp.push_back({centre_domain[static_cast<std::size_t>(y) * W + x], 1.0f});
+          const int d = centre_domain[static_cast<std::size_t>(y) * W + x];
+          if (domains.opaque(d)) {
+            row_counts[y][x] = 0;
+            continue;
+          }
+          rb.tmp.push_back({d, 1.0f});
           row_counts[y][x] = 1;
           row_refs[y].push_back(rb.tmp[0]);
           continue;

@@ -45,6 +45,8 @@ std::string section_path(const std::string& name) {
   const fs::path dir = fs::path(asset_dir()) / "sections";
   for (const fs::path& p : {dir / name, dir / (name + ".json")})
     if (fs::is_regular_file(p, ec)) return p.string();
+  // EBSD maps the project ships (assets/ebsd/*.ctf, *.ang) by file name.
+  if (const fs::path p = fs::path(asset_dir()) / "ebsd" / name; fs::is_regular_file(p, ec)) return p.string();
   return "";
 }
 

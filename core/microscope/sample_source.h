@@ -22,7 +22,8 @@ bool medium_known(const std::string& name);
 // A thin-section name ("granite") or path ("…/granite.json") that resolves to a readable file.
 bool section_known(const std::string& name);
 // The file a section name refers to: a path as given if it exists, else
-// <assets>/sections/<name>[.json]; <assets> is $PMSIM_ASSETS or the source tree's assets/.
+// <assets>/sections/<name>[.json], else <assets>/ebsd/<name> (shipped EBSD maps); <assets> is
+// $PMSIM_ASSETS or the source tree's assets/.
 std::string section_path(const std::string& name);
 
 // The crystal a plate or wedge scene shows: sample.crystal when set (owned by `storage`), else the

@@ -6,6 +6,7 @@
 // Lab frame: x to the right of the image (east), y up (north), z along the microscope axis toward
 // the observer; light travels +z; angles counter-clockwise as the observer sees them, from +x.
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -21,6 +22,9 @@ namespace pmsim {
 // ortho + bertrand in: the back focal plane in parallel light, a small bright spot).
 enum class ViewMode { Ortho, Cono };
 enum class SampleType { Plate, Wedge, Section };             // sample.type: plate|wedge|section
+// sample.nonindexed: what an EBSD map's non-indexed points show: the mounting medium (as a hole
+// in the section) or nothing (black, opaque).
+enum class NonIndexed { Medium, Black };
 enum class Compensator { None, Gypsum, Mica, QuartzWedge };  // compensator: none|gypsum|mica|quartz_wedge
 // illuminant: D65|A is pmsim::Illuminant (core/spectrum/illuminant.h)
 enum class LensModel { Auto, Ideal, Physical };    // optics.lens_model: auto|ideal|physical
@@ -70,8 +74,13 @@ struct SampleSettings {
   std::array<double, 3> x_axis{1, 0, 0};      // sample.x_axis (biaxial nα direction)
   std::array<double, 3> z_axis{0, 0, 1};      // sample.z_axis (biaxial nγ direction)
   std::optional<SampleCut> cut;               // sample.cut (replaces the three axes when set)
-  std::string section;                        // sample.section (thin-section file in assets/sections)
+  std::string section;                        // sample.section (thin-section file in assets/sections,
+                                              // or an EBSD map .ctf/.ang: core/microscope/map_section.h)
   std::string medium = "mounting";            // sample.medium (mounting medium name)
+  // sample.phases: an EBSD map's phase names → library minerals ({"Garnet 2": "almandine"});
+  // core/ebsd/phase_names.h resolves names it does not list.
+  std::map<std::string, std::string> phases;
+  NonIndexed nonindexed = NonIndexed::Medium;  // sample.nonindexed: medium|black
 };
 
 struct RenderSettings {
@@ -82,6 +91,9 @@ struct RenderSettings {
   double single_wavelength_nm = 0.0;               // render.single_wavelength_nm (0: white light)
   double tolerance_de2000 = 0.5;                   // render.tolerance (stop when the estimate is below)
   RenderStrategy strategy = RenderStrategy::Auto;  // render.strategy: auto|modal|exact
+  // render.native: on|off. On an EBSD map, one pixel per map point and the field framing the map
+  // (core/microscope/native_resolution.h); no effect on other samples.
+  bool native = false;
 };
 
 struct OpticsSettings {

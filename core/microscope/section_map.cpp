@@ -59,7 +59,7 @@ double hash01(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d
 }  // namespace
 
 const Crystal* SectionMap::crystal_of_domain(int d) const {
-  if (d < 2) return nullptr;
+  if (d < 2 || domain_grain_[d] < 0) return nullptr;
   const SectionGrain& g = grains[domain_grain_[d]];
   const int per_zone = g.twinned ? 2 : 1;
   return g.zones[(d - g.first_domain) / per_zone].crystal;
@@ -67,7 +67,7 @@ const Crystal* SectionMap::crystal_of_domain(int d) const {
 
 const glm::dmat3& SectionMap::orientation_of_domain(int d) const {
   static const glm::dmat3 identity(1.0);
-  if (d < 2) return identity;
+  if (d < 2 || domain_grain_[d] < 0) return identity;
   const SectionGrain& g = grains[domain_grain_[d]];
   const int per_zone = g.twinned ? 2 : 1, k = d - g.first_domain;
   const SectionZone& z = g.zones[k / per_zone];
@@ -75,9 +75,10 @@ const glm::dmat3& SectionMap::orientation_of_domain(int d) const {
 }
 
 const std::string& SectionMap::mineral_of_domain(int d) const {
-  static const std::string slide = "slide", medium = "mounting medium";
+  static const std::string slide = "slide", medium = "mounting medium", opaque = "non-indexed (black)";
   if (d == kSlideDomain) return slide;
   if (d == kMediumDomain) return medium;
+  if (domain_grain_[d] < 0) return opaque;
   const SectionGrain& g = grains[domain_grain_[d]];
   return g.zones[(d - g.first_domain) / (g.twinned ? 2 : 1)].mineral;
 }
@@ -89,6 +90,12 @@ void SectionMap::finish() {
     g.first_domain = static_cast<int>(domain_grain_.size());
     const std::size_t n = g.zones.size() * (g.twinned ? 2 : 1);
     domain_grain_.insert(domain_grain_.end(), n, static_cast<int>(i));
+  }
+  if (raster) {  // domain_at reads the raster: no tiling grid
+    if (has_opaque_domain) domain_grain_.push_back(-1);
+    cell_start_.clear();
+    cell_grains_.clear();
+    return;
   }
   // Grid over the extent with about two cells per grain, at most 1024 a side.
   const double area = width_mm * height_mm;
@@ -231,7 +238,23 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   return g.first_domain + zone * (g.twinned ? 2 : 1) + twin;
 }
 
+int DomainRaster::domain_at(const glm::dvec2& p, int outside) const {
+  // Row r's centres lie at first_y − r·step_y (rows go south), column c's at first_x + c·step_x
+  // (+ step_x/2 in the shifted rows of a hexagonal grid).
+  const double fr = (first_y_mm - p.y) / step_y_mm + 0.5;
+  if (!(fr >= 0.0 && fr < rows)) return outside;
+  const int r = static_cast<int>(fr);
+  const double shift = (hexagonal && r % 2 == 1) ? 0.5 : 0.0;
+  const double fc = (p.x - first_x_mm) / step_x_mm + 0.5 - shift;
+  const int n = r % 2 == 0 ? columns_odd : columns_even;
+  if (!(fc >= 0.0 && fc < n)) return outside;
+  const std::size_t pair = static_cast<std::size_t>(columns_odd) + static_cast<std::size_t>(columns_even);
+  const std::size_t i = static_cast<std::size_t>(r / 2) * pair + (r % 2 == 1 ? columns_odd : 0) + static_cast<int>(fc);
+  return domain[i];
+}
+
 int SectionMap::domain_at(const glm::dvec2& p) const {
+  if (raster) return raster->domain_at(p, kSlideDomain);
   if (grains.empty() || !(std::abs(p.x) <= 0.5 * width_mm && std::abs(p.y) <= 0.5 * height_mm))
     return kSlideDomain;
   return domain_in_grain(nearest_grain(p), p);

@@ -11,6 +11,7 @@
 //
 // Optical domains: 0 the slide beyond the section's extent, 1 the mounting medium in cracks (both
 // without a crystal), then per grain zones × twin individuals.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -82,6 +83,21 @@ struct SectionGrain {
   int first_domain = 2;  // domains first_domain … first_domain + zones·(twinned ? 2 : 1) − 1
 };
 
+// The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
+// each map point owns the step_x × step_y rectangle centred on it (on a hexagonal grid the
+// rectangles of every second row are shifted by half a step: a brick pattern of the hexagonal
+// cells' area and neighbours), so the domain under a section point is one index computation.
+struct DomainRaster {
+  bool hexagonal = false;
+  int columns_odd = 0, columns_even = 0, rows = 0;
+  double step_x_mm = 0.0, step_y_mm = 0.0;
+  double first_x_mm = 0.0, first_y_mm = 0.0;  // section position of the first point (top left)
+  std::vector<std::int32_t> domain;          // per map point, in the map's order (row by row)
+
+  // The domain under section point p; `outside` beyond the points' rectangles.
+  int domain_at(const glm::dvec2& p_mm, int outside) const;
+};
+
 class SectionMap {
  public:
   static constexpr int kSlideDomain = 0;
@@ -97,7 +113,7 @@ class SectionMap {
 
   // Ground-truth label of a domain: 0 for the mounting medium or the slide, k ≥ 1 for grain k
   // (grains[k − 1]: file order, so the same k in every render of the same section).
-  int grain_label(int domain) const { return domain < 2 ? 0 : domain_grain_[domain] + 1; }
+  int grain_label(int domain) const { return domain < 2 || domain_grain_[domain] < 0 ? 0 : domain_grain_[domain] + 1; }
   const SectionGrain& grain_by_label(int k) const { return grains[k - 1]; }
 
   // Optical domain under a section point (mm).
@@ -107,6 +123,16 @@ class SectionMap {
   const Crystal* crystal_of_domain(int d) const;
   const glm::dmat3& orientation_of_domain(int d) const;
   const std::string& mineral_of_domain(int d) const;
+
+  // A raster section (an EBSD map): domain_at looks points up here, not in the grain tiling; the
+  // grains are the map's reconstructed grains and their zones its orientation clusters. Null for
+  // the sections of assets/sections.
+  std::shared_ptr<const DomainRaster> raster;
+  // A raster's opaque domain (non-indexed points shown black, sample.nonindexed=black): set before
+  // finish(), which then adds it after the grains' domains; −1 when there is none.
+  bool has_opaque_domain = false;
+  int opaque_domain() const { return has_opaque_domain ? domain_count() - 1 : -1; }
+  bool is_opaque(int d) const { return has_opaque_domain && d == domain_count() - 1; }
 
   // Assigns the domains of every grain and builds the lookup grid domain_at uses (parsing calls
   // it; call it again after changing grains). Results equal the exhaustive search's.

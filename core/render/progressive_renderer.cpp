@@ -13,7 +13,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/evaluation_plan.h"
+#include "core/microscope/map_section.h"
 #include "core/microscope/scene_check.h"
 #include "core/render/buffer_pool.h"
 #include "core/render/convergence_metric.h"
@@ -151,6 +153,11 @@ ProgressiveRenderer::~ProgressiveRenderer() { impl_->stop(); }
 
 void ProgressiveRenderer::restart(const Scene& scene) {
   check_scene(scene);  // throws before anything stops: the previous scene keeps rendering
+  // An EBSD map is read (once: cached) here too, so that a bad map file or an unmapped phase is
+  // refused like a bad key instead of rendering nothing. Not in check_scene: a scene file whose
+  // map needs sample.phases must still load, for a --set or the UI to supply them.
+  if (scene.sample_in && scene.sample.type == SampleType::Section && is_orientation_map_path(scene.sample.section))
+    load_scene_section(scene);
   Impl* im = impl_.get();
   im->stop();
   auto cancel = std::make_shared<std::atomic<bool>>(false);
