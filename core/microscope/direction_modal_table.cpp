@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <tbb/parallel_for.h>
 
@@ -22,7 +23,7 @@ glm::dvec3 direction(double kx, double ky) {
 
 // The mode direction of a birefringence vector: half its angle.
 glm::dvec2 mode_of(const double b[2], const glm::dvec2& fallback) {
-  const double len = std::hypot(b[0], b[1]);
+  const double len = std::sqrt(b[0] * b[0] + b[1] * b[1]);
   if (len < 1e-12) return fallback;
   const double c2 = b[0] / len, s2 = b[1] / len;  // cos 2θ, sin 2θ
   // cos θ = sqrt((1 + cos 2θ)/2), sin θ = sin 2θ/(2 cos θ), on the branch cos θ ≥ 0.
@@ -143,20 +144,25 @@ ModalFit DirectionModalTable::at(const glm::dvec3& k) const {
       w[4 * b + a] = wx[a] * wy[b];
       c[4 * b + a] = &n_[static_cast<std::size_t>(j0 - 1 + b) * kSide + (i0 - 1 + a)];
     }
+  // The 16 nodes' 18 values summed as flat arrays (contiguous, so the compiler vectorises it).
+  constexpr int kValues = sizeof(Node) / sizeof(double);
+  static_assert(kValues == 18);
+  double acc[kValues] = {};
+  for (int q = 0; q < 16; ++q) {
+    double v[kValues];
+    std::memcpy(v, c[q], sizeof v);
+    for (int i = 0; i < kValues; ++i) acc[i] += w[q] * v[i];
+  }
+  Node sum;
+  std::memcpy(&sum, acc, sizeof sum);
   double gamma[3], t1[3], t2[3];
   glm::dvec2 e1[3], e2[3];
   for (int a = 0; a < 3; ++a) {
-    double b1[2] = {0, 0}, b2[2] = {0, 0};
-    t1[a] = t2[a] = 0.0;
-    for (int q = 0; q < 16; ++q) {
-      for (int m = 0; m < 2; ++m) {
-        b1[m] += w[q] * c[q]->b1[a][m];
-        b2[m] += w[q] * c[q]->b2[a][m];
-      }
-      t1[a] += w[q] * c[q]->t1[a];
-      t2[a] += w[q] * c[q]->t2[a];
-    }
-    gamma[a] = std::hypot(b1[0], b1[1]);
+    const double* b1 = sum.b1[a];
+    const double* b2 = sum.b2[a];
+    t1[a] = sum.t1[a];
+    t2[a] = sum.t2[a];
+    gamma[a] = std::sqrt(b1[0] * b1[0] + b1[1] * b1[1]);  // |B| ≤ 1e7 nm: no overflow, hypot is slow
     e1[a] = mode_of(b1, {1.0, 0.0});
     e2[a] = mode_of(b2, {-e1[a].y, e1[a].x});
     // One branch across the anchors, as ModalFit::fit keeps them (the Lagrange interpolation in

@@ -8,7 +8,7 @@
 
 namespace pmsim {
 
-// The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the two-lane
+// The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the 2- and 4-lane
 // version in spectral_level.cpp.
 constexpr double kTwoOverPi = 0.63661977236758134308;
 constexpr double kPio2Hi = 1.5707963267341256;     // first 33 bits of π/2
