@@ -16,6 +16,7 @@ enum class StrategyKind {
   Product,       // ProgressiveRenderer::render of the scene with `settings` applied
   FirstPass,     // the first progressive pass of ProgressiveRenderer (interactive preview)
   SecondPass,    // its second pass (for a large field: the 1/4-resolution preview after the glance)
+  StageDrag,     // a scripted stage drag: each frame's restart waited on to its converged image
   Rgb,           // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
   Stratified,    // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
   Hero,          // bench-side: hero wavelength + n−1 equally spaced companions, per unit
@@ -29,13 +30,17 @@ struct BenchStrategy {
   int wavelengths = 0;                // bench-side sample count
   bool product() const {
     return kind == StrategyKind::Product || kind == StrategyKind::FirstPass ||
-           kind == StrategyKind::SecondPass;
+           kind == StrategyKind::SecondPass || kind == StrategyKind::StageDrag;
   }
 };
 
+// Frames of the stage drag (1° each).
+constexpr int kStageDragFrames = 30;
+
 struct StrategyResult {
   std::vector<float> xyz;        // width·height·3
-  double time_ms = 0.0;          // wall time of the whole render (set-up included)
+  double time_ms = 0.0;          // wall time of the whole render (set-up included); stage drag:
+                                 // the mean per frame
   int wavelengths = 0;           // spectral samples per unit (renderer: its band count)
   double error_estimate = -1.0;  // the renderer's own estimate (product strategies); -1: none
   double cpu_ms = -1.0;          // ≥ 0: process CPU time of the measured part alone (the first

@@ -28,6 +28,7 @@ constexpr Family kFamilies[] = {
     {"auto", "renderer auto (converged)", {0, 0, 0}},
     {"first-pass", "first progressive pass", {140, 86, 75}},
     {"second-pass", "second progressive pass", {196, 156, 148}},
+    {"stage-drag", "stage drag, mean frame to converged", {255, 0, 255}},
     {"reference", "reference, half samples", {127, 127, 127}},
     {"ideal", "ideal lenses", {23, 190, 207}},
     {"sml", "bench SML lenses dT / Schlick", {188, 189, 34}},

@@ -69,6 +69,7 @@ std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene
     if (!modal) return nullptr;
     plan->modal_ = std::move(*modal);
     policy.radial_table = plan->modal_.radial_table;
+    policy.direction_table = plan->modal_.direction_table;
     policy.exact_units = static_cast<std::size_t>(
         std::count(plan->modal_.unit_exact.begin(), plan->modal_.unit_exact.end(), 1));
   }

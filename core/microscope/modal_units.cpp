@@ -9,6 +9,7 @@
 #include "core/base/units.h"
 #include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
+#include "core/microscope/direction_modal_table.h"
 #include "core/microscope/radial_modal_table.h"
 
 namespace pmsim {
@@ -50,7 +51,28 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
         std::fabs(domain.crystal_to_lab[2].z) > 1.0 - 1e-12)
       out.radial_table = radial.build(anchors[dom].data(), std::min(1.0, s_max * (1.0 + 1e-9)));
   }
+  // Any other figure of one plate (a biaxial one, or a uniaxial one tilted): a table over the
+  // direction, when it replaces at least 4× as many fits as it costs (so the small figures of the
+  // previews and the golden images keep their per-pixel fits).
+  DirectionModalTable by_direction;
+  if (!out.radial_table && scene.mode == ViewMode::Cono && scene.bertrand_in && !units.empty()) {
+    const int dom = units.front().domain;
+    const OpticalDomain& domain = domains[dom];
+    bool one_domain = true;
+    double s_max = 0.0;
+    for (const EvalUnit& u : units) {
+      one_domain = one_domain && u.domain == dom && u.thickness_um == units.front().thickness_um;
+      s_max = std::max(s_max, std::hypot(u.k_air.x, u.k_air.y));
+    }
+    s_max = std::min(0.999, s_max * (1.0 + 1e-9));
+    if (one_domain && domain.crystal && !domain.crystal->absorbing() && !domain.crystal->optically_active() &&
+        units.size() >= 4 * static_cast<std::size_t>(DirectionModalTable::nodes_needed(s_max))) {
+      out.direction_table = by_direction.build(anchors[dom].data(), s_max, cancel);
+      if (cancel && *cancel) return std::nullopt;
+    }
+  }
   const bool use_radial = out.radial_table;
+  const bool use_direction = out.direction_table;
   std::atomic<bool> stop{false};
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, units.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -73,6 +95,8 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
             ModalFit fit;
             if (use_radial)
               fit = radial.at(plan.dir(unit, d));
+            else if (use_direction)
+              fit = by_direction.at(plan.dir(unit, d));
             else
               fit.fit(anchors[unit.domain].data(), plan.dir(unit, d));
             if (exact.absorbing_in_field && dom.crystal->absorbing()) out.unit_exact[u] = 1;

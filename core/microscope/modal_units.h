@@ -18,6 +18,7 @@ struct ModalUnits {
   int dirs_per_unit = 1;
   std::vector<char> unit_exact;  // 1 = this unit needs the exact Jones matrix
   bool radial_table = false;     // the fits came from a RadialModalTable
+  bool direction_table = false;  // the fits came from a DirectionModalTable
 };
 
 // Fits every unit of `plan` (its domains, view and lenses set) in parallel (TBB); nullopt when

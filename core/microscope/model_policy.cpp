@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/microscope/direction_modal_table.h"
 #include "core/microscope/radial_modal_table.h"
 #include "core/microscope/view_geometry.h"
 
@@ -94,6 +95,8 @@ std::string model_report(const ModelPolicy& policy, const PixelView& view) {
   if (policy.radial_table)
     report << "; optic axis ⟂ stage: modal fits from a radial table of " << RadialModalTable::kEntries
            << " directions";
+  if (policy.direction_table)
+    report << "; one plate in every direction: modal fits from a " << DirectionModalTable::kSide << "² direction table";
   if (policy.exact_units > 0)
     report << "; exact Jones matrix for " << policy.exact_units << " of " << view.units.size()
            << " evaluations (absorbing crystals in parallel light; optically active ones near the axis)";

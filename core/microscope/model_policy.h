@@ -48,6 +48,7 @@ struct ModelPolicy {
 
   // What the later stages found (fit_modal_units, the lens ghosts).
   bool radial_table = false;    // modal fits interpolated from a RadialModalTable
+  bool direction_table = false;  // modal fits interpolated from a DirectionModalTable
   std::size_t exact_units = 0;  // units of a modal plan evaluated exactly (ExactnessCriteria)
   bool ghosts_traced = false;   // lens ghosts added (physical lenses, dT ≥ 2, conoscopic figure)
   int ghost_depth = 0;          // optics.lens_depth (dT) of the traced ghosts

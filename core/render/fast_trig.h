@@ -8,7 +8,7 @@
 
 namespace pmsim {
 
-// The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the two-lane
+// The Cody–Waite split of π/2 and the reduction factor, shared by fast_sincos and the 2- and 4-lane
 // version in spectral_level.cpp.
 constexpr double kTwoOverPi = 0.63661977236758134308;
 constexpr double kPio2Hi = 1.5707963267341256;     // first 33 bits of π/2
@@ -16,8 +16,9 @@ constexpr double kPio2Lo = 6.077100506506192e-11;  // π/2 − kPio2Hi
 
 // Taylor polynomials of sin and cos on the reduced argument |r| ≤ π/4 (truncation < 4e-13), for a
 // double or a vector of doubles (GCC/Clang vector extensions).
+// always_inline: the renderer's AVX2 kernel inlines it to compile it for that target.
 template <class T>
-inline void sincos_taylor(T r, T& sr, T& cr) {
+[[gnu::always_inline]] inline void sincos_taylor(T r, T& sr, T& cr) {
   const T r2 = r * r;
   sr = r * (1.0 + r2 * (-1.0 / 6 +
                         r2 * (1.0 / 120 +

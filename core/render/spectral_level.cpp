@@ -56,7 +56,7 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
     L.anchor_w.push_back(w);
     L.anchor_dw.push_back(dw);
   }
-  const int padded = L.n + (L.n & 1);  // the modal kernel takes two bands at a time
+  const int padded = (L.n + 3) / 4 * 4;  // the modal kernel takes two or four bands at a time
   for (int a = 0; a < 3; ++a) {
     L.aw[a].assign(padded, 0.0);  // zero weights: the padding band contributes nothing
     L.adw[a].assign(padded, 0.0);
@@ -107,76 +107,125 @@ double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& L, int
 namespace {
 
 // Two bands at a time in SSE2 registers (GCC/Clang vector extensions: the x86-64 baseline, no
-// target flags needed); selects are masks, so nothing branches.
+// target flags needed), or four in AVX2 registers where the CPU has them; selects are masks, so
+// nothing branches. Both widths do the same IEEE operations per lane (AVX2 without FMA: nothing
+// is contracted), so they give the same bits.
 typedef double v2d __attribute__((vector_size(16)));
 typedef long long v2l __attribute__((vector_size(16)));
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+template <class V>
+struct Mask;
+template <>
+struct Mask<v2d> {
+  using type = v2l;
+};
+template <>
+struct Mask<v4d> {
+  using type = v4l;
+};
 
-inline v2d load2(const double* p) {
-  v2d v;
+#define PMSIM_LANE [[gnu::always_inline]] inline  // inlined into the AVX2 kernel, compiled there
+// The helpers pass 256-bit vectors by value, which GCC warns changes the ABI without AVX; they are
+// always inlined, so no call with that ABI exists. (GCC reports it at the end of the file, so the
+// warning is off for the rest of it.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <class V>
+PMSIM_LANE V load(const double* p) {
+  V v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-inline v2d splat(double x) { return v2d{x, x}; }
-inline v2d select(v2l mask, v2d a, v2d b) {
-  v2l ai, bi;
+template <class V>
+PMSIM_LANE V splat(double x) {
+  V v;
+  for (std::size_t i = 0; i < sizeof(V) / sizeof(double); ++i) v[i] = x;
+  return v;
+}
+template <class V, class M = typename Mask<V>::type>
+PMSIM_LANE V select(M mask, V a, V b) {
+  M ai, bi;
   std::memcpy(&ai, &a, sizeof a);
   std::memcpy(&bi, &b, sizeof b);
-  const v2l r = (ai & mask) | (bi & ~mask);
-  v2d out;
+  const M r = (ai & mask) | (bi & ~mask);
+  V out;
   std::memcpy(&out, &r, sizeof out);
   return out;
 }
-inline v2d vabs(v2d x) { return select(x < splat(0.0), -x, x); }
+template <class V>
+PMSIM_LANE V vabs(V x) {
+  return select(x < splat<V>(0.0), -x, x);
+}
 
-// sin and cos of two lanes (fast_trig.h's algorithm without branches): nearest quadrant by the
+// sin and cos of the lanes (fast_trig.h's algorithm without branches): nearest quadrant by the
 // 1.5·2⁵² rounding trick (exact for |x| < 2⁵¹ in round-to-nearest), Cody–Waite reduction,
 // Taylor polynomials on |r| ≤ π/4 (truncation < 4e-13), the quadrant k mod 4 selecting and signing
 // them.
-inline void sincos2(v2d x, v2d& s, v2d& c) {
-  const v2d magic = splat(6755399441055744.0);  // 1.5·2⁵²
-  const v2d k = (x * splat(kTwoOverPi) + magic) - magic;
-  const v2d r = (x - k * splat(kPio2Hi)) - k * splat(kPio2Lo);
-  v2d sr, cr;
+template <class V>
+PMSIM_LANE void sincos_lanes(V x, V& s, V& c) {
+  const V magic = splat<V>(6755399441055744.0);  // 1.5·2⁵²
+  const V k = (x * splat<V>(kTwoOverPi) + magic) - magic;
+  const V r = (x - k * splat<V>(kPio2Hi)) - k * splat<V>(kPio2Lo);
+  V sr, cr;
   sincos_taylor(r, sr, cr);
-  const v2d k4 = (k * 0.25 + magic) - magic;
-  const v2d q0 = k - 4.0 * k4;                          // −2 … 2, ≡ k mod 4
-  const v2d q = select(q0 < splat(0.0), q0 + 4.0, q0);  // 0 … 3
-  const v2l odd = vabs(q - 2.0) == splat(1.0);
-  const v2d ps = select(odd, cr, sr), pc = select(odd, sr, cr);
-  s = select(q >= splat(2.0), -ps, ps);             // sin < 0 in quadrants 2, 3
-  c = select(vabs(q - 1.5) < splat(1.0), -pc, pc);  // cos < 0 in quadrants 1, 2
+  const V k4 = (k * 0.25 + magic) - magic;
+  const V q0 = k - 4.0 * k4;                                   // −2 … 2, ≡ k mod 4
+  const V q = select(q0 < splat<V>(0.0), q0 + 4.0, q0);        // 0 … 3
+  const auto odd = vabs(q - 2.0) == splat<V>(1.0);
+  const V ps = select(odd, cr, sr), pc = select(odd, sr, cr);
+  s = select(q >= splat<V>(2.0), -ps, ps);             // sin < 0 in quadrants 2, 3
+  c = select(vabs(q - 1.5) < splat<V>(1.0), -pc, pc);  // cos < 0 in quadrants 1, 2
 }
+
+// The band loop of modal_plain_xyz, sizeof(V)/8 bands at a time: the two scalars per band.
+template <class V>
+PMSIM_LANE void modal_plain_bands(const ModalTerms& m, const SpectralLevel& L, double* va, double* vb) {
+  constexpr int kLanes = sizeof(V) / sizeof(double);
+  const double two_pi = 6.283185307179586;
+  const V half_h = splat<V>(0.5 * L.band_nm);
+  const V g0 = splat<V>(m.gamma_nm[0]), g1 = splat<V>(m.gamma_nm[1]), g2 = splat<V>(m.gamma_nm[2]);
+  const V k0 = splat<V>(m.c[1][0]), k1 = splat<V>(m.c[1][1]), k2 = splat<V>(m.c[1][2]);
+  const int n = L.n;
+  for (int i = 0; i < n; i += kLanes) {  // the level's arrays are padded to a multiple of 4
+    const V w0 = load<V>(&L.aw[0][i]), w1 = load<V>(&L.aw[1][i]), w2 = load<V>(&L.aw[2][i]);
+    const V il = load<V>(&L.inv_nm[i]);
+    const V g = w0 * g0 + w1 * g1 + w2 * g2;
+    const V dg = load<V>(&L.adw[0][i]) * g0 + load<V>(&L.adw[1][i]) * g1 + load<V>(&L.adw[2][i]) * g2;
+    const V phi = two_pi * g * il;               // φ = 2πΓ/λ
+    const V dphi = two_pi * il * (dg - g * il);  // dφ/dλ
+    const V c1 = w0 * k0 + w1 * k1 + w2 * k2;
+    const V x = dphi * half_h;
+    V s0, c0, sx, cx;
+    sincos_lanes(phi, s0, c0);
+    sincos_lanes(x, sx, cx);
+    const V x2 = x * x;
+    const auto small = vabs(x) < splat<V>(1e-3);  // series there: sinc = 1 − x²/6, q = x/3 − x³/30
+    const V inv = 1.0 / select(small, splat<V>(1.0), x);
+    const V sinc = select(small, 1.0 - x2 * (1.0 / 6.0), sx * inv);
+    const V q = select(small, x * (1.0 / 3.0 - x2 * (1.0 / 30.0)), (sx - x * cx) * inv * inv);
+    const V a = c1 * c0 * sinc, b = c1 * s0 * q;
+    std::memcpy(va + i, &a, sizeof a);
+    std::memcpy(vb + i, &b, sizeof b);
+  }
+}
+
+[[gnu::target("avx2")]] void modal_plain_bands_avx2(const ModalTerms& m, const SpectralLevel& L, double* va,
+                                                    double* vb) {
+  modal_plain_bands<v4d>(m, L, va, vb);
+}
+
+const bool kHaveAvx2 = __builtin_cpu_supports("avx2");
 
 // The common case (no compensator, bands): T(λ) = C0(λ) + Cφ(λ)·cos φ(λ) band-averaged (see
 // band_integral.h); the C0 part is linear in the anchors and precomputed per level. The band loop
 // writes two scalars per band; the XYZ sum follows.
 glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* va, double* vb) {
-  const double two_pi = 6.283185307179586;
-  const v2d half_h = splat(0.5 * L.band_nm);
-  const v2d g0 = splat(m.gamma_nm[0]), g1 = splat(m.gamma_nm[1]), g2 = splat(m.gamma_nm[2]);
-  const v2d k0 = splat(m.c[1][0]), k1 = splat(m.c[1][1]), k2 = splat(m.c[1][2]);
+  if (kHaveAvx2)
+    modal_plain_bands_avx2(m, L, va, vb);
+  else
+    modal_plain_bands<v2d>(m, L, va, vb);
   const int n = L.n;
-  for (int i = 0; i < n; i += 2) {  // the level's arrays are padded to an even length
-    const v2d w0 = load2(&L.aw[0][i]), w1 = load2(&L.aw[1][i]), w2 = load2(&L.aw[2][i]);
-    const v2d il = load2(&L.inv_nm[i]);
-    const v2d g = w0 * g0 + w1 * g1 + w2 * g2;
-    const v2d dg = load2(&L.adw[0][i]) * g0 + load2(&L.adw[1][i]) * g1 + load2(&L.adw[2][i]) * g2;
-    const v2d phi = two_pi * g * il;               // φ = 2πΓ/λ
-    const v2d dphi = two_pi * il * (dg - g * il);  // dφ/dλ
-    const v2d c1 = w0 * k0 + w1 * k1 + w2 * k2;
-    const v2d x = dphi * half_h;
-    v2d s0, c0, sx, cx;
-    sincos2(phi, s0, c0);
-    sincos2(x, sx, cx);
-    const v2d x2 = x * x;
-    const v2l small = vabs(x) < splat(1e-3);  // series there: sinc = 1 − x²/6, q = x/3 − x³/30
-    const v2d inv = 1.0 / select(small, splat(1.0), x);
-    const v2d sinc = select(small, 1.0 - x2 * (1.0 / 6.0), sx * inv);
-    const v2d q = select(small, x * (1.0 / 3.0 - x2 * (1.0 / 30.0)), (sx - x * cx) * inv * inv);
-    const v2d a = c1 * c0 * sinc, b = c1 * s0 * q;
-    std::memcpy(va + i, &a, sizeof a);
-    std::memcpy(vb + i, &b, sizeof b);
-  }
   glm::dvec3 xyz = L.steady[0] * m.c[0][0] + L.steady[1] * m.c[0][1] + L.steady[2] * m.c[0][2];
   for (int i = 0; i < n; ++i) xyz += L.weight[i] * va[i] - L.moment6h[i] * vb[i];
   return xyz;
@@ -185,7 +234,7 @@ glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* 
 glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
   if (!plan.compensator().present && !L.monochromatic) {
     constexpr int kChunk = 256;
-    alignas(16) double va[kChunk + 1], vb[kChunk + 1];
+    alignas(32) double va[kChunk + 3], vb[kChunk + 3];
     if (L.n <= kChunk) {
       const EvalUnit& unit = plan.units()[u];
       const int D = plan.dirs_of(unit);
