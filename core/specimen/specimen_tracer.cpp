@@ -10,6 +10,7 @@
 namespace pmsim {
 
 void InterfaceCounters::add(const InterfaceCounters& o) {
+  paths += o.paths;
   events += o.events;
   tir += o.tir;
   lost += o.lost;
@@ -22,6 +23,7 @@ void InterfaceCounters::add(const InterfaceCounters& o) {
 SpecimenPath trace_specimen(const SpecimenScene& scene, PolarizedRay ray, InterfaceCounters* counters,
                             int max_interfaces) {
   SpecimenPath path;
+  if (counters) ++counters->paths;
   ray.dir = glm::normalize(ray.dir);
   ray.pol = glm::normalize(ray.pol - glm::dot(ray.pol, ray.dir) * ray.dir);
   int medium = kSpecimenAir;

@@ -23,7 +23,10 @@ namespace pmsim {
 
 // What the interfaces did to the traced intensity (a test's energy bookkeeping).
 struct InterfaceCounters {
-  std::uint64_t events = 0, tir = 0, lost = 0;  // Fresnel events, of which TIR; paths lost (depth)
+  std::uint64_t paths = 0;                       // rays traced
+  // Fresnel events, of which TIR; paths stopped at the interface limit (trapped by repeated TIR
+  // inside a fragment: dark, the light they stand for leaves after many more reflections).
+  std::uint64_t events = 0, tir = 0, lost = 0;
   double incident = 0.0, reflected = 0.0, transmitted = 0.0;
   double max_defect = 0.0;  // max over events of |incident − reflected − transmitted| / incident
   void add(const InterfaceCounters& o);
