@@ -64,9 +64,9 @@ FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdiv
   FragmentMesh m;
   std::vector<glm::dvec3> unit;
   icosphere(subdivisions, unit, m.triangles);
-  // Radial modulation r(u) = 1 + roughness·Σ_k w_k·cos(f_k·(u·d_k) + φ_k): smooth lobes of
-  // random direction and angular frequency, normalized so that |r − 1| ≤ roughness. A star-shaped
-  // blob stays a closed, non-self-intersecting mesh for roughness < 1.
+  // Horizontal modulation r(u) = 1 + roughness·Σ_k w_k·cos(f_k·(u·d_k) + φ_k): smooth lobes of
+  // random direction and angular frequency, normalized so that |r − 1| ≤ roughness. The blob
+  // stays star-shaped, a closed, non-self-intersecting mesh, for roughness < 1.
   constexpr int kLobes = 5;
   SpecimenRandom rng(shape.seed);
   glm::dvec3 dir[kLobes];
@@ -88,8 +88,13 @@ FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdiv
     double r = 0.0;
     for (int k = 0; k < kLobes; ++k) r += weight[k] * std::cos(freq[k] * glm::dot(u, dir[k]) + phase[k]);
     r = 1.0 + shape.roughness * r / wsum;
-    const glm::dvec3 flat{u.x, u.y, std::copysign(std::pow(std::abs(u.z), shape.flatness), u.z)};
-    const glm::dvec3 p = r * flat * scale;
+    // Keep the sphere's horizontal radius ρ and set |z| = (1 − ρ^k)^(1/k) (superellipsoid profile).
+    const double rho = std::min(1.0, std::hypot(u.x, u.y));
+    const double zk = std::pow(std::max(0.0, 1.0 - std::pow(rho, shape.flatness)), 1.0 / shape.flatness);
+    const glm::dvec3 flat{u.x, u.y, std::copysign(zk, u.z)};
+    // The lobes move the outline only (x, y): the broad faces stay flat, as fracture and cleavage
+    // faces of a fragment are, and the irregularity is in its outline and inclined edges.
+    const glm::dvec3 p = glm::dvec3(r * flat.x, r * flat.y, flat.z) * scale;
     m.vertices.push_back({c * p.x - s * p.y, s * p.x + c * p.y, p.z});
   }
   double zmin = 1e300, zmax = -1e300;

@@ -21,10 +21,11 @@ struct FragmentShape {
   double height_ratio = 0.45;     // vertical semi-axis / horizontal semi-axis
   double elongation = 1.0;        // semi-axis along y' / along x' (≤ 1)
   double azimuth_rad = 0.0;       // turn about z of the fragment's long axis x'
-  double roughness = 0.12;        // relative amplitude of the radial lobes (0: an ellipsoid)
-  // Broad faces: the blob's z = sign(u_z)·|u_z|^flatness on the unit sphere (1: an ellipsoid;
-  // smaller: a flat top and bottom with inclined, rounded edges, like a fragment on its face).
-  double flatness = 0.35;
+  double roughness = 0.12;        // relative amplitude of the outline's lobes (0: a smooth oval)
+  // Broad faces: the profile of a superellipsoid, |z|^k + ρ^k = 1 in the unit blob (ρ the
+  // horizontal radius; k = 2 an ellipsoid; k = 8: flat top and bottom, slope ∝ ρ⁷, with
+  // inclined, rounded edges, like a fragment lying on a fracture or cleavage face).
+  double flatness = 8.0;
   std::uint64_t seed = 1;         // the lobes' phases and directions
   glm::dmat3 crystal_to_lab{1.0};  // columns: crystal X, Y, Z (indicatrix axes) in the lab frame
 };

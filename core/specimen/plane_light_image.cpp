@@ -128,16 +128,20 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         for (int px = 0; px < w; ++px) {
           const std::size_t pix = std::size_t(py) * w + px;
           SpecimenRandom rng(o.seed ^ splitmix64(pix * 0x100000001b3ull + std::uint64_t(pass) * 0x9e3779b9ull));
-          for (int b = 0; b < nb; ++b)
-            for (int st = 0; st < strata; ++st) {
-              const double jx = rng.uniform(), jy = rng.uniform();
-              const glm::dvec3 f{(px + jx - 0.5 * w) * o.um_per_px, (0.5 * h - (py + jy)) * o.um_per_px, 0.0};
-              const glm::dvec3 p = rotate_z(f, g.c, g.s);
-              const double lambda = mono ? o.single_wavelength_nm : band_lo[b] + band_width[b] * rng.uniform();
-              const double u1 = rng.uniform(), u2 = rng.uniform();
+          // One point of the pixel and one pupil direction per stratum, shared by every band: the
+          // bands' estimates are then correlated, so the noise is mostly of brightness, not of
+          // hue, and what differs between bands is the dispersion (the paths bend by λ).
+          for (int st = 0; st < strata; ++st) {
+            const double jx = rng.uniform(), jy = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            const glm::dvec3 f{(px + jx - 0.5 * w) * o.um_per_px, (0.5 * h - (py + jy)) * o.um_per_px, 0.0};
+            const glm::dvec3 p = rotate_z(f, g.c, g.s);
+            const double band_jitter = rng.uniform();
+            for (int b = 0; b < nb; ++b) {
+              const double lambda = mono ? o.single_wavelength_nm : band_lo[b] + band_width[b] * band_jitter;
               acc[(pix * nb + b) * strata + st] += float(sample_path(
                   scene, g, o.centre_um + glm::dvec2(p.x, p.y), st, lambda, u1, u2, counters ? &local : nullptr));
             }
+          }
         }
       if (counters) {
         std::lock_guard<std::mutex> lock(counter_mutex);
