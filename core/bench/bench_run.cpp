@@ -12,6 +12,7 @@
 
 #include "core/bench/bench_scenes.h"
 #include "core/bench/bench_strategy.h"
+#include "core/bench/grain_mount_bench.h"
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
 #include "core/io/image_file.h"
@@ -117,6 +118,11 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
         save_png(opt.images_dir, bs.name + "__" + st.name, ref.width, ref.height, r.xyz);
     }
   }
+  // The refracting specimen's rows (issue 12), under the same filters as the scenes above.
+  if (std::string("grain-mount-garnet-1.54").find(opt.scene_filter) != std::string::npos &&
+      std::string("plane-light-reference-half plane-light-first-pass plane-light-64spp").find(opt.strategy_filter) !=
+          std::string::npos)
+    for (BenchRow& row : grain_mount_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

@@ -45,7 +45,8 @@ std::string enum_name(E e, const NameTable<E>& names) {
 
 const NameTable<ViewMode> kModes = {{"ortho", ViewMode::Ortho}, {"cono", ViewMode::Cono}};
 const NameTable<SampleType> kSampleTypes = {
-    {"plate", SampleType::Plate}, {"wedge", SampleType::Wedge}, {"section", SampleType::Section}};
+    {"plate", SampleType::Plate}, {"wedge", SampleType::Wedge}, {"section", SampleType::Section},
+    {"grains", SampleType::Grains}};
 const NameTable<NonIndexed> kNonIndexed = {{"medium", NonIndexed::Medium}, {"black", NonIndexed::Black}};
 const NameTable<Compensator> kCompensators = {{"none", Compensator::None},
                                               {"gypsum", Compensator::Gypsum},
@@ -161,6 +162,10 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.eyepiece.field_number_mm; }},
       {"condenser.na", [](Scene& s, const json& v) { s.condenser.na = as_number(v); },
        [](const Scene& s) -> json { return s.condenser.na; }},
+      {"condenser.aperture_na", [](Scene& s, const json& v) { s.condenser.aperture_na = as_number(v); },
+       [](const Scene& s) -> json { return s.condenser.aperture_na; }},
+      {"focus_um", [](Scene& s, const json& v) { s.focus_um = as_number(v); },
+       [](const Scene& s) -> json { return s.focus_um; }},
       {"sample.present", [](Scene& s, const json& v) { s.sample_in = as_bool(v); },
        [](const Scene& s) -> json { return s.sample_in; }},
       {"sample.type", [](Scene& s, const json& v) { s.sample.type = as_enum(v, kSampleTypes); },
@@ -212,6 +217,14 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json {
          return s.sample.nonindexed == NonIndexed::Medium ? json(nullptr) : json(enum_name(s.sample.nonindexed, kNonIndexed));
        }},
+      {"sample.medium_index",
+       [](Scene& s, const json& v) {
+         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+           s.sample.medium_index.reset();
+         else
+           s.sample.medium_index = as_number(v);
+       },
+       [](const Scene& s) -> json { return s.sample.medium_index ? json(*s.sample.medium_index) : json(nullptr); }},
       {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
        [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
       {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },

@@ -21,7 +21,7 @@ namespace pmsim {
 // then be flipped on its own (cono + bertrand out: the image plane lit by the convergent cone;
 // ortho + bertrand in: the back focal plane in parallel light, a small bright spot).
 enum class ViewMode { Ortho, Cono };
-enum class SampleType { Plate, Wedge, Section };             // sample.type: plate|wedge|section
+enum class SampleType { Plate, Wedge, Section, Grains };     // sample.type: plate|wedge|section|grains
 // sample.nonindexed: what an EBSD map's non-indexed points show: the mounting medium (as a hole
 // in the section) or nothing (black, opaque).
 enum class NonIndexed { Medium, Black };
@@ -54,6 +54,9 @@ struct StageSettings {
 
 struct CondenserSettings {
   double na = 0.9;  // condenser.na (the cone that lights the conoscopic figure)
+  // condenser.aperture_na: the aperture diaphragm in orthoscopic mode, the NA of the cone of
+  // light reaching the specimen (0: parallel light, the diaphragm stopped down; core/specimen).
+  double aperture_na = 0.0;
 };
 
 // sample.cut: a plate cut along a crystal plane of a library mineral with unit-cell and optical-
@@ -81,6 +84,10 @@ struct SampleSettings {
   // core/ebsd/phase_names.h resolves names it does not list.
   std::map<std::string, std::string> phases;
   NonIndexed nonindexed = NonIndexed::Medium;  // sample.nonindexed: medium|black
+  // sample.medium_index: n_D of the immersion liquid of a grain mount (1.40…1.80), with the
+  // dispersion of the liquid series in assets/liquids (core/specimen/immersion_liquid.h).
+  // Unset: the mount uses 1.54.
+  std::optional<double> medium_index;
 };
 
 struct RenderSettings {
@@ -109,6 +116,9 @@ struct Scene {
   bool analyzer_in = true;                  // analyzer: in|out
   double stage_deg = 0.0;                   // stage_deg
   bool bertrand_in = false;                 // bertrand: in|out
+  // focus_um: the fine focus, the objective raised by this many µm from the focus on the
+  // specimen's mid-plane (+ = focusing up). Used by the refracting specimen (core/specimen).
+  double focus_um = 0.0;
   Illuminant illuminant = Illuminant::D65;  // illuminant
   StageSettings stage;
   ObjectiveSettings objective;

@@ -97,6 +97,19 @@ void check_scene(const Scene& s, const std::string& file) {
           "numerical aperture in air must be in (0, 1)");
   require(s.condenser.na > 0 && s.condenser.na < 1, file, "condenser.na", num(s.condenser.na),
           "numerical aperture in air must be in (0, 1)");
+  // The aperture diaphragm cannot open beyond the condenser's own NA.
+  require(std::isfinite(s.condenser.aperture_na) && s.condenser.aperture_na >= 0 &&
+              s.condenser.aperture_na <= s.condenser.na,
+          file, "condenser.aperture_na", num(s.condenser.aperture_na),
+          "must be in [0, condenser.na = " + num(s.condenser.na) + "]");
+  // A fine-focus travel of ±1 mm holds any specimen on a slide; beyond that is a typo.
+  require(std::isfinite(s.focus_um) && std::abs(s.focus_um) <= 1000, file, "focus_um", num(s.focus_um),
+          "must be in [-1000, 1000] µm");
+  // The range of the standard immersion-liquid series (assets/liquids/immersion_liquids.json).
+  if (s.sample.medium_index)
+    require(std::isfinite(*s.sample.medium_index) && *s.sample.medium_index >= 1.40 &&
+                *s.sample.medium_index <= 1.80,
+            file, "sample.medium_index", num(*s.sample.medium_index), "n_D must be in [1.40, 1.80]");
   require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 && s.sample.thickness_um <= 1e5,
           file, "sample.thickness_um", num(s.sample.thickness_um), "must be in (0, 100000] µm");
   for (auto [v, key] :

@@ -1,0 +1,57 @@
+#pragma once
+// The geometry of a grain mount: mineral fragments lying on the slide in a layer of immersion
+// liquid under the cover glass. Lengths in µm; lab frame of core/microscope/scene.h (x east, y
+// north, z up toward the objective); z = 0 is the top of the slide.
+//
+// A fragment is a closed triangle mesh, star-shaped about its centre: an icosphere whose radius
+// is modulated by a few random smooth lobes (irregular, rounded-angular outline), flattened as
+// fragments settle on their broad side (flat top and bottom, inclined edges), turned about z. Outward winding (counter-clockwise seen
+// from outside), so cross(v1 − v0, v2 − v0) is the outward normal.
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+namespace pmsim {
+
+struct FragmentShape {
+  glm::dvec2 centre_um{0.0};      // position on the slide
+  double size_um = 100.0;         // largest horizontal extent (diameter of the unmodulated blob)
+  double height_ratio = 0.45;     // vertical semi-axis / horizontal semi-axis
+  double elongation = 1.0;        // semi-axis along y' / along x' (≤ 1)
+  double azimuth_rad = 0.0;       // turn about z of the fragment's long axis x'
+  double roughness = 0.12;        // relative amplitude of the outline's lobes (0: a smooth oval)
+  // Broad faces: the profile of a superellipsoid, |z|^k + ρ^k = 1 in the unit blob (ρ the
+  // horizontal radius; k = 2 an ellipsoid; k = 8: flat top and bottom, slope ∝ ρ⁷, with
+  // inclined, rounded edges, like a fragment lying on a fracture or cleavage face).
+  double flatness = 8.0;
+  std::uint64_t seed = 1;         // the lobes' phases and directions
+  glm::dmat3 crystal_to_lab{1.0};  // columns: crystal X, Y, Z (indicatrix axes) in the lab frame
+};
+
+struct FragmentMesh {
+  std::vector<glm::dvec3> vertices;        // µm, lab frame
+  std::vector<glm::uvec3> triangles;       // outward winding
+  double z_min_um = 0.0, z_max_um = 0.0;
+};
+
+// The mesh of one fragment resting `gap_um` above the slide (a liquid film under it).
+// `subdivisions` of the icosahedron: 3 gives 1280 triangles, facets of ~4° of the blob.
+FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um = 1.0, int subdivisions = 3);
+
+struct ScatterOptions {
+  double field_width_um = 2000.0, field_height_um = 2000.0;  // the area to fill, centred on 0
+  double min_size_um = 30.0, max_size_um = 300.0;            // log-uniform sizes
+  double coverage = 0.25;                                    // target area fraction
+  // Fragments settle on their broad side: the vertical semi-axis is at most this, so that one
+  // focus shows small and large fragments together in a liquid film of ~2× this thickness.
+  double max_half_height_um = 40.0;
+  std::uint64_t seed = 12;
+};
+// Fragments placed at random without overlap (rejection of overlapping bounding circles), random
+// size, shape, azimuth and a uniformly random 3-D orientation of the crystal (Shoemake's
+// quaternion method). Reproducible from options.seed.
+std::vector<FragmentShape> scatter_fragments(const ScatterOptions& options);
+
+}  // namespace pmsim

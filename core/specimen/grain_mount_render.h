@@ -1,0 +1,27 @@
+#pragma once
+// A microscope scene with sample.type = grains rendered in plane-polarized light: fragments of
+// sample.mineral (or sample.crystal) scattered over the slide in the liquid of n_D
+// sample.medium_index, seen through the scene's objective at focus_um with the condenser's
+// aperture diaphragm condenser.aperture_na (core/specimen/plane_light_image.h).
+#include <functional>
+#include <memory>
+
+#include "core/microscope/scene.h"
+#include "core/render/render_image.h"
+#include "core/specimen/plane_light_image.h"
+#include "core/specimen/specimen_scene.h"
+
+namespace pmsim {
+
+// n_D of the liquid when sample.medium_index is not set: that of the usual mounting media.
+constexpr double kDefaultGrainMountIndex = 1.54;
+
+// The mount on the slide: a fixed 4 mm × 4 mm spread of fragments (the same slide whatever the
+// mineral or liquid; the stage moves and turns it), in the liquid the scene names.
+std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene);
+// The view: field of view, stage, focus, apertures, polarizer, illuminant and samples of `scene`
+// (render.spp; 0: 64 samples a pixel).
+PlaneLightOptions plane_light_options(const Scene& scene);
+RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr);
+
+}  // namespace pmsim
