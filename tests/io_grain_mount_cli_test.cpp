@@ -13,31 +13,18 @@
 
 #include "core/base/input_error.h"
 #include "core/io/scene_file.h"
+#include "render_cli_run.h"
 
 namespace fs = std::filesystem;
 using namespace pmsim;
 
 namespace {
-const std::string kBinary = std::string(PMSIM_BINARY_DIR) + "/app/pmsim-render";
+const std::string kBinary = test::kRenderBinary;
 
-std::string temp_dir() {
-  const auto d = fs::temp_directory_path() / ("pmsim_grain_mount_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d.string();
-}
+std::string temp_dir() { return test::cli_temp_dir("grain_mount_test"); }
 
-struct CliRun {
-  int code;
-  std::string err;
-};
-CliRun run(const std::string& args) {
-  const std::string err_file = temp_dir() + "/stderr.txt";
-  const int status = std::system((kBinary + " " + args + " 2>" + err_file + " >/dev/null").c_str());
-  std::ifstream f(err_file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+using test::CliRun;
+CliRun run(const std::string& args) { return test::run_render_cli(args, temp_dir()); }
 const std::string kSmall = " --set render.width=16 --set render.height=16 --set render.spp=2 ";
 }  // namespace
 
