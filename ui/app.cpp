@@ -13,6 +13,7 @@
 #include "core/base/input_error.h"
 #include "core/base/units.h"  // kPi, radians, degrees
 #include "core/io/scene_file.h"
+#include "core/microscope/sample_source.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/scale_bar.h"
@@ -234,6 +235,7 @@ void App::frame() {
   draw_status();
   draw_chart();
   draw_teaching();
+  draw_file_browser();
   handle_shortcuts(edit, changed);
   if (changed) {
     edit.stage_deg = wrap_deg(edit.stage_deg);
@@ -396,6 +398,32 @@ void App::draw_status() {
               field_of_view_mm(scene_), notice_.c_str());
   if (ImGui::IsWindowHovered() && !im.model_report.empty()) ImGui::SetTooltip("%s", im.model_report.c_str());
   ImGui::End();
+}
+
+void App::browse(Browse what) {
+  browse_for_ = what;
+  if (what == Browse::Scene)
+    browser_.open("Open a scene file", resolve_scene_path(scene_path_), {".json"});
+  else {
+    const std::string current = section_path(scene_.sample.section);
+    browser_.open("Open a thin section or EBSD map", current.empty() ? asset_dir() + "/sections/" : current,
+                  {".json", ".ctf", ".ang"});
+  }
+}
+
+void App::draw_file_browser() {
+  std::string chosen;
+  if (!browser_.draw(chosen)) return;
+  if (browse_for_ == Browse::Scene) {
+    scene_path_ = chosen;
+    load_scene(chosen);
+    return;
+  }
+  Scene s = scene_;
+  s.sample_in = true;
+  s.sample.type = SampleType::Section;
+  s.sample.section = chosen;
+  commit(s);
 }
 
 void App::handle_shortcuts(Scene& edit, bool& changed) {

@@ -15,6 +15,7 @@
 #include "core/microscope/grain_report.h"
 #include "core/microscope/scene.h"
 #include "core/render/progressive_renderer.h"
+#include "ui/file_browser.h"
 #include "ui/layout.h"
 #include "ui/render_feed.h"
 #include "ui/linear_texture.h"
@@ -58,6 +59,11 @@ class App {
   bool set(std::string_view assignment);  // "key=value" (scene keys), through commit()
   void perform(Action action);            // what a shortcut does
   bool load_scene(const std::string& path);
+  // The file dialog (ui/file_browser.h): a scene file to load, or a thin section / EBSD map to put
+  // on the stage. The buttons "Browse..." in the Files and Sample tabs open it.
+  enum class Browse { Scene, Section };
+  void browse(Browse what);
+  bool browsing() const { return browser_.is_open(); }
   bool save_scene(const std::string& path);
   bool export_field(const std::string& path);  // .png (sRGB) or .exr/.tif (linear), scene in metadata
   // Whole-window screenshots need the framebuffer after ImGui has drawn; the driver collects
@@ -129,6 +135,10 @@ class App {
   std::string scene_path_ = "pmsim-scene.json";
   std::string field_path_ = "pmsim-field.png";
   std::string window_path_ = "pmsim-window.png";
+
+  FileBrowser browser_;
+  Browse browse_for_ = Browse::Scene;
+  void draw_file_browser();
 
   struct Teaching;  // cursor probe, chart and figure text (teaching_panel.cpp)
   std::unique_ptr<Teaching> teaching_;

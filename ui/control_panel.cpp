@@ -195,6 +195,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     changed |= input_text("Section or map file", s.section);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("a thin-section .json, or an EBSD orientation map .ctf (Oxford) / .ang (EDAX); Enter opens it");
+    if (ImGui::Button("Browse...##section")) browse(Browse::Section);
     if (is_orientation_map_path(s.section))
       changed |= combo_enum("Non-indexed points", s.nonindexed, {"mounting medium", "black"});
     changed |= slider_double("Thickness", s.thickness_um, 1.0, 100.0, "%.1f um");
@@ -361,6 +362,8 @@ void App::draw_files_tab() {
   load |= ImGui::Button("Load");
   ImGui::SameLine();
   if (ImGui::Button("Save")) save_scene(scene_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Browse...##scene")) browse(Browse::Scene);
   if (load) load_scene(scene_path_);
   static const std::vector<std::string> scenes = list_asset_stems("scenes", ".json");
   ImGui::TextUnformatted("Example scenes (assets/scenes)");

@@ -9,6 +9,8 @@
 
 #include "ui/gl_functions.h"
 
+#include <GLFW/glfw3.h>
+
 namespace pmsim::ui {
 
 double FrameTimes::mean_ms() const {
@@ -55,6 +57,18 @@ bool UiDriver::init_imgui(const ImGuiGlBackend& backend, const Scene& scene, int
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // the layout is computed, never restored from disk
   io.LogFilename = nullptr;
+  // ImGui 1.86 reads keys through io.KeyMap; the GLFW backend fills it for a window, and the same
+  // GLFW codes serve here so that an injected Enter, Escape or Tab edits text fields off-screen as
+  // it does in a window (the GLFW backend's own init writes the same values again).
+  for (const auto& [imgui_key, glfw_key] :
+       {std::pair{ImGuiKey_Tab, GLFW_KEY_TAB}, {ImGuiKey_LeftArrow, GLFW_KEY_LEFT},
+        {ImGuiKey_RightArrow, GLFW_KEY_RIGHT}, {ImGuiKey_UpArrow, GLFW_KEY_UP}, {ImGuiKey_DownArrow, GLFW_KEY_DOWN},
+        {ImGuiKey_PageUp, GLFW_KEY_PAGE_UP}, {ImGuiKey_PageDown, GLFW_KEY_PAGE_DOWN}, {ImGuiKey_Home, GLFW_KEY_HOME},
+        {ImGuiKey_End, GLFW_KEY_END}, {ImGuiKey_Delete, GLFW_KEY_DELETE}, {ImGuiKey_Backspace, GLFW_KEY_BACKSPACE},
+        {ImGuiKey_Space, GLFW_KEY_SPACE}, {ImGuiKey_Enter, GLFW_KEY_ENTER}, {ImGuiKey_Escape, GLFW_KEY_ESCAPE},
+        {ImGuiKey_KeyPadEnter, GLFW_KEY_KP_ENTER}, {ImGuiKey_A, GLFW_KEY_A}, {ImGuiKey_C, GLFW_KEY_C},
+        {ImGuiKey_V, GLFW_KEY_V}, {ImGuiKey_X, GLFW_KEY_X}, {ImGuiKey_Y, GLFW_KEY_Y}, {ImGuiKey_Z, GLFW_KEY_Z}})
+    io.KeyMap[imgui_key] = glfw_key;
   setup_imgui_style();
   backend_ = backend;
   if (!backend_.init || !backend_.init("#version 330 core")) {
