@@ -342,11 +342,12 @@ json scene_to_json(const Scene& scene) {
   for (const Key& k : keys()) {
     const json v = k.write(scene);
     if (v.is_null()) continue;
-    j[json::json_pointer("/" + [&] {
-      std::string p = k.path;
-      std::replace(p.begin(), p.end(), '.', '/');
-      return p;
-    }())] = v;
+    // Appended rather than "/" + path: GCC 12 warns (-Wrestrict, a known false positive) on the
+    // inlined operator+ of a literal and a string.
+    std::string pointer = "/";
+    pointer += k.path;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    j[json::json_pointer(pointer)] = v;
   }
   return j;
 }
