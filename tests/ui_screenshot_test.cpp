@@ -2,10 +2,12 @@
 // layout says, and it shows what the instrument shows for a few textbook states.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/io/image_file.h"
 #include "core/io/scene_file.h"
@@ -154,6 +156,81 @@ TEST(UiScreenshot, ConoscopicCalciteShowsADarkCrossAlongThePolars) {
   EXPECT_GT(quadrants / n, 4 * (arms / n) + 30);
   // Outside the back focal plane disk and the field stop: the panel's grey.
   EXPECT_NEAR(box(px, l.field.x + 6, l.field.y + 6).mean(), 0.22 * 255, 6.0);
+}
+
+// Every window pixel inside the field stop at r ≤ 0.8 off the crosshair (grey level, mean of R, G, B).
+std::vector<double> field_pixels(const WindowPixels& px, const Layout& l) {
+  std::vector<double> v;
+  const double r = 0.8 * l.field_radius();
+  for (int y = static_cast<int>(l.field.cy() - r); y <= static_cast<int>(l.field.cy() + r); ++y)
+    for (int x = static_cast<int>(l.field.cx() - r); x <= static_cast<int>(l.field.cx() + r); ++x)
+      if (std::hypot(x - l.field.cx(), y - l.field.cy()) <= r && std::abs(x - l.field.cx()) > 3 &&
+          std::abs(y - l.field.cy()) > 3) {  // off the crosshair lines, drawn over the image
+        const std::uint8_t* p = &px.rgb[(static_cast<size_t>(y) * px.width + x) * 3];
+        v.push_back((p[0] + p[1] + p[2]) / 3.0);
+      }
+  return v;
+}
+
+TEST(UiScreenshot, GrainMountFromTheSampleTypeChangesWithTheFineFocus) {
+  // A plate on the stage in plane light, then the sample type switched to a grain mount of
+  // almandine (n ≈ 1.83) in a liquid of 1.54: the image is the specimen renderer's — fragments
+  // with dark outlines (light refracted out of the objective's aperture) instead of the plate's
+  // even field — and it changes when the fine focus moves (the Becke line and the outlines shift).
+  Scene s = test_scene();
+  s.analyzer_in = false;
+  s.objective.magnification = 40;  // 0.5 mm field: fragments of 30–300 µm fill it at ~5 µm a pixel
+  s.objective.na = 0.65;
+  std::string log;
+  auto d = HeadlessDriver::create(s, 1280, 800, log);
+  ASSERT_TRUE(d) << log;
+  ASSERT_TRUE(settle(*d, 120));
+  const Layout l = d->app().layout();
+  const std::vector<double> plate = field_pixels(d->read_pixels(), l);
+
+  ASSERT_TRUE(d->app().set("sample.type=grains"));
+  ASSERT_TRUE(d->app().set("sample.mineral=almandine"));
+  ASSERT_TRUE(d->app().set("sample.medium_index=1.54"));
+  ASSERT_TRUE(settle(*d, 120)) << "the grain mount did not converge";
+  EXPECT_EQ(d->app().image().model_report.rfind("grain mount", 0), 0u) << d->app().image().model_report;
+  const std::vector<double> focus0 = field_pixels(d->read_pixels(), l);
+  // The default plate in plane light is an even bright field; the mount has dark outlines: count
+  // the pixels below half brightness.
+  const auto dark_fraction = [](const std::vector<double>& v) {
+    return static_cast<double>(std::count_if(v.begin(), v.end(), [](double g) { return g < 128.0; })) /
+           static_cast<double>(v.size());
+  };
+  const double plate_dark = dark_fraction(plate), mount_dark = dark_fraction(focus0);
+  // Measured 0.001 (the scale bar drawn over the plate) and 0.09 (almandine's dark rims at 40x):
+  // the bounds sit a factor 3–10 from each, on either side of a clear gap.
+  EXPECT_LT(plate_dark, 0.01);
+  EXPECT_GT(mount_dark, 0.03);
+
+  // Fine focus up 15 µm by the keys (Shift+Up, 1 µm a press).
+  for (int k = 0; k < 15; ++k) d->app().perform(Action::FocusUp);
+  EXPECT_DOUBLE_EQ(d->app().scene().focus_um, 15.0);
+  ASSERT_TRUE(settle(*d, 120));
+  const std::vector<double> up = field_pixels(d->read_pixels(), l);
+  // Where the focus acts: the Becke line and the outline move, the liquid between fragments stays
+  // the empty field's white. Mean change at pixels that are dark (< 200 of 255) in either image,
+  // against the mean change where both are near white (> 240): the ratio separates refraction at
+  // the boundaries from a change of the sampling noise, which would touch every pixel alike.
+  double edge_sum = 0, flat_sum = 0;
+  std::size_t edge_n = 0, flat_n = 0;
+  for (std::size_t k = 0; k < up.size(); ++k) {
+    const double dk = std::abs(focus0[k] - up[k]);
+    if (focus0[k] < 200 || up[k] < 200) edge_sum += dk, ++edge_n;
+    if (focus0[k] > 240 && up[k] > 240) flat_sum += dk, ++flat_n;
+  }
+  ASSERT_GT(edge_n, 0u);
+  ASSERT_GT(flat_n, 0u);
+  const double edge = edge_sum / edge_n, flat = flat_sum / flat_n;
+  std::printf("grain mount: mean change at outlines %.2f, in the liquid %.3f of 255 (dark: plate %.4f, mount %.4f)\n",
+              edge, flat, plate_dark, mount_dark);
+  // Measured 6.3 against 0.02 of 255: a ratio of 20 and a change of 2 grey levels are far inside
+  // both, and neither would be met by a re-drawn noise pattern (ratio ≈ 1) or by an unchanged image.
+  EXPECT_GT(edge, 20.0 * flat);
+  EXPECT_GT(edge, 2.0);
 }
 
 }  // namespace

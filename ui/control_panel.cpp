@@ -11,6 +11,7 @@
 #include "core/microscope/map_section.h"
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
+#include "core/specimen/grain_mount_render.h"
 #include "ui/app.h"
 #include "ui/asset_lists.h"
 
@@ -159,6 +160,14 @@ void App::draw_microscope_tab(Scene& edit, bool& changed) {
                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::TextDisabled("field of view %.3f mm (field number / magnification)", field_of_view_mm(edit));
   changed |= slider_double("Condenser NA", edit.condenser.na, 0.05, 1.3, "%.2f");
+  // The aperture diaphragm (condenser.aperture_na, 0 = stopped down) can open up to the
+  // condenser's own NA; lowering the condenser NA below it closes it with it.
+  edit.condenser.aperture_na = std::min(edit.condenser.aperture_na, edit.condenser.na);
+  changed |= slider_double("Aperture diaphragm", edit.condenser.aperture_na, 0.0, edit.condenser.na, "NA %.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("condenser.aperture_na: 0 = stopped down (nearly parallel light)");
+  // Fine focus (focus_um, + = objective up): also Shift+Up/Down (1 um) and Ctrl + mouse wheel over the field.
+  changed |= slider_double("Fine focus", edit.focus_um, -50.0, 50.0, "%+.1f um");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("focus_um: 0 = specimen mid-plane, + = focusing up");
   changed |= combo_enum("Illuminant", edit.illuminant, {"D65 (daylight)", "A (tungsten)"});
   ImGui::Separator();
   ImGui::Checkbox("Eyepiece crosshair", &reticle_);
@@ -173,7 +182,36 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     edit.sample_in = present;
     changed = true;
   }
-  changed |= combo_enum("Type", s.type, {"plate", "wedge", "thin section"});
+  changed |= combo_enum("Type", s.type, {"plate", "wedge", "thin section", "grains"});
+
+  if (s.type == SampleType::Grains) {
+    // A grain mount: fragments of sample.mineral in an immersion liquid of n_D sample.medium_index,
+    // rendered in plane-polarized light (the analyzer is ignored) by core/specimen.
+    static const std::vector<std::string> minerals = [] {
+      try {
+        return mineral_names();
+      } catch (const std::exception&) {
+        return std::vector<std::string>{};
+      }
+    }();
+    if (ImGui::BeginCombo("Mineral", s.mineral.c_str())) {
+      for (const auto& name : minerals)
+        if (ImGui::Selectable(name.c_str(), name == s.mineral)) {
+          s.mineral = name;
+          s.crystal.reset();
+          changed = true;
+        }
+      ImGui::EndCombo();
+    }
+    double nd = s.medium_index.value_or(kDefaultGrainMountIndex);
+    if (slider_double("Liquid n_D", nd, 1.40, 1.80, "%.3f")) {
+      s.medium_index = nd;
+      changed = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("sample.medium_index: n_D of the immersion liquid");
+    ImGui::TextDisabled("plane light; focus and aperture in the Microscope tab");
+    return;
+  }
 
   if (s.type == SampleType::Section) {
     // Section files, then the EBSD maps shipped in assets/ebsd (by file name, extension kept:

@@ -2,6 +2,9 @@
 
 #include <chrono>
 
+#include "core/microscope/scene_check.h"
+#include "core/specimen/grain_mount_render.h"
+
 namespace pmsim::ui {
 
 RenderFeed::RenderFeed(int renderer_threads) : renderer_(renderer_threads), thread_([this] { run(); }) {}
@@ -10,6 +13,7 @@ RenderFeed::~RenderFeed() {
   {
     std::lock_guard<std::mutex> lock(mu_);
     quit_ = true;
+    grain_cancel_.store(true);
   }
   cv_.notify_all();
   thread_.join();
@@ -26,22 +30,31 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
   // so that its workers free the cores before the feed thread (which has to be scheduled first)
   // restarts. A restart that this catches half-way is superseded by the pending scene anyway.
   renderer_.interrupt();
+  grain_cancel_.store(true);
   cv_.notify_all();
 }
 
 void RenderFeed::run() {
   std::unique_lock<std::mutex> lock(mu_);
   std::uint64_t restarts = 0;  // the renderer's generation counts successful restarts
+  std::uint64_t grain_mounts = 0;
   for (;;) {
     cv_.wait(lock, [&] { return quit_ || pending_.has_value(); });
     if (quit_) return;
     auto [scene, id] = std::move(*pending_);
     pending_.reset();
     busy_ = true;
+    grain_cancel_.store(false);  // under the lock: a later submit() raises it again
     lock.unlock();
+    const bool grains = scene.sample_in && scene.sample.type == SampleType::Grains;
     std::optional<Failure> failed;
     try {
-      renderer_.restart(scene);
+      if (grains) {
+        check_scene(scene);
+        renderer_.cancel();  // the cores are the grain mount's now
+      } else {
+        renderer_.restart(scene);
+      }
     } catch (const std::exception& e) {
       failed = Failure{id, e.what()};
     }
@@ -50,11 +63,43 @@ void RenderFeed::run() {
     if (failed) {
       failure_ = failed;
     } else {
-      ++restarts;
       applied_id_ = id;
-      renderer_generation_ = restarts;
+      grains_mode_ = grains;
+      if (grains) {
+        grain_generation_ = kGrainGeneration | ++grain_mounts;
+        grain_running_ = true;
+      } else {
+        renderer_generation_ = ++restarts;
+      }
     }
     cv_.notify_all();
+    if (!failed && grains) {
+      const std::uint64_t generation = grain_generation_;
+      lock.unlock();
+      render_grains(scene, generation);
+      lock.lock();
+      grain_running_ = false;
+      cv_.notify_all();
+    }
+  }
+}
+
+void RenderFeed::render_grains(const Scene& scene, std::uint64_t generation) {
+  try {
+    render_grain_mount(
+        scene,
+        [&](const RenderImage& img) {
+          std::lock_guard<std::mutex> lock(mu_);
+          grain_latest_ = img;
+          grain_latest_.generation = generation;
+          cv_.notify_all();
+        },
+        &grain_cancel_);
+  } catch (const std::exception& e) {
+    // Passed the scene check but the mount could not be built (e.g. an unknown mineral name):
+    // reported like a refused scene.
+    std::lock_guard<std::mutex> lock(mu_);
+    failure_ = Failure{applied_id_, e.what()};
   }
 }
 
@@ -66,6 +111,17 @@ std::optional<RenderFeed::Failure> RenderFeed::take_failure() {
 }
 
 bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (grains_mode_) {
+      const bool changed = grain_latest_.passes > 0 && (out.generation != grain_latest_.generation ||
+                                                        out.passes != grain_latest_.passes ||
+                                                        out.width != grain_latest_.width);
+      if (changed) out = grain_latest_;
+      current = !busy_ && !pending_ && applied_id_ == submitted_id_ && out.generation == grain_generation_;
+      return changed;
+    }
+  }
   const bool changed = renderer_.snapshot(out);
   std::lock_guard<std::mutex> lock(mu_);
   current = !busy_ && !pending_ && applied_id_ == submitted_id_ && out.generation == renderer_generation_;
@@ -79,6 +135,10 @@ bool RenderFeed::wait(double timeout_s) const {
   {
     std::unique_lock<std::mutex> lock(mu_);
     if (!cv_.wait_until(lock, deadline, [&] { return quit_ || (!busy_ && !pending_); })) return false;
+    if (grains_mode_) {
+      if (!cv_.wait_until(lock, deadline, [&] { return quit_ || pending_ || !grain_running_; })) return false;
+      return !pending_ && grain_latest_.converged && grain_latest_.generation == grain_generation_;
+    }
   }
   const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
   return left > 0 && renderer_.wait(left);

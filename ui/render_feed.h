@@ -4,6 +4,10 @@
 // section); the UI thread must never wait for that. So scenes go to a small feeder thread that
 // restarts the renderer with the newest one (older pending scenes are skipped: only the last
 // position of a drag matters), and the UI thread only ever takes snapshots.
+// A grain mount (sample.type = grains) is a refracting 3-D specimen that the core renders with
+// render_grain_mount (core/specimen), not the ProgressiveRenderer: the feeder thread runs it
+// itself, pass by pass, and a newer submission cancels it through its cancel flag.
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -41,6 +45,7 @@ class RenderFeed {
 
  private:
   void run();
+  void render_grains(const Scene& scene, std::uint64_t generation);  // on the feeder thread, unlocked
 
   ProgressiveRenderer renderer_;
   mutable std::mutex mu_;
@@ -52,6 +57,14 @@ class RenderFeed {
   std::uint64_t applied_id_ = 0;           // id of the scene the renderer is rendering
   std::uint64_t renderer_generation_ = 0;  // the renderer's generation for applied_id_
   std::optional<Failure> failure_;
+  // The grain-mount path: its images carry generation kGrainGeneration | n, apart from the
+  // renderer's own generations so that a snapshot never mistakes one for the other.
+  static constexpr std::uint64_t kGrainGeneration = 1ull << 62;
+  bool grains_mode_ = false;       // the applied scene is a grain mount
+  bool grain_running_ = false;     // its render is in flight
+  std::uint64_t grain_generation_ = 0;  // kGrainGeneration | n of the applied grain mount
+  RenderImage grain_latest_;
+  std::atomic<bool> grain_cancel_{false};
   std::thread thread_;
 };
 

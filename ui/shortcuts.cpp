@@ -39,6 +39,8 @@ const std::vector<Shortcut>& shortcuts() {
       {GLFW_KEY_0, false, true, Action::StageCentre, "centre the section under the crosshair (x = y = 0 mm)"},
       {GLFW_KEY_UP, false, false, Action::PolarizerUp, "polarizer +5 deg"},
       {GLFW_KEY_DOWN, false, false, Action::PolarizerDown, "polarizer -5 deg"},
+      {GLFW_KEY_UP, true, false, Action::FocusUp, "fine focus up 1 um (also Ctrl + wheel over the field)"},
+      {GLFW_KEY_DOWN, true, false, Action::FocusDown, "fine focus down 1 um"},
       {GLFW_KEY_PAGE_UP, false, false, Action::AnalyzerUp, "analyzer +5 deg"},
       {GLFW_KEY_PAGE_DOWN, false, false, Action::AnalyzerDown, "analyzer -5 deg"},
       {GLFW_KEY_A, false, false, Action::ToggleAnalyzer, "analyzer in / out"},

@@ -20,6 +20,8 @@ enum class Action {
   StageCentre,
   PolarizerUp,
   PolarizerDown,
+  FocusUp,
+  FocusDown,
   AnalyzerUp,
   AnalyzerDown,
   ToggleAnalyzer,

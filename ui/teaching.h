@@ -3,6 +3,7 @@
 // only when the scene or the probed point changes.
 #include <cstdint>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "core/microscope/grain_report.h"
 #include "core/microscope/pixel_probe.h"
 #include "core/render/michel_levy_chart.h"
+#include "core/specimen/becke_probe.h"
+#include "core/specimen/specimen_scene.h"
 #include "core/spectrum/illuminant.h"
 #include "ui/app.h"
 
@@ -21,8 +24,19 @@ struct App::Teaching {
   struct ProbeResult {
     PixelProbe probe;
     std::optional<GrainReport> grain;  // the grain under the point (orthoscopic thin sections)
+    std::optional<BeckeProbe> becke;   // grain mounts: what the Becke line does at the point
     std::string error;
   };
+  // The grain mount the Becke probe reads (built by the probe job, used only by probe jobs,
+  // which run one at a time): rebuilt only when the mineral or the liquid changes.
+  struct BeckeMount {
+    std::unique_ptr<SpecimenScene> specimen;
+    std::string mineral;
+    double medium_index = 0.0;
+    bool custom = false;
+  };
+  std::shared_ptr<BeckeMount> becke_mount = std::make_shared<BeckeMount>();
+  std::optional<BeckeProbe> becke;
   std::optional<GrainReport> grain;
   PixelProbe probe;
   std::string probe_error;

@@ -9,6 +9,7 @@
 #include "core/base/units.h"
 #include "core/microscope/grain_probe.h"
 #include "core/render/michel_levy_chart.h"
+#include "core/specimen/grain_mount_render.h"
 
 #include "ui/app.h"
 #include "ui/teaching.h"
@@ -225,6 +226,7 @@ void App::draw_teaching() {
     Teaching::ProbeResult r = t.probe_job.get();
     t.probe = std::move(r.probe);
     t.grain = std::move(r.grain);
+    t.becke = std::move(r.becke);
     t.probe_error = std::move(r.error);
     t.spectrum.assign(t.probe.transmission.begin(), t.probe.transmission.end());
   }
@@ -233,9 +235,22 @@ void App::draw_teaching() {
     t.probe_generation = generation_;
     t.probe_x = probe_x_;
     t.probe_y = probe_y_;
-    t.probe_job = std::async(std::launch::async, [scene = scene_, x = probe_x_, y = probe_y_] {
+    t.probe_job = std::async(std::launch::async, [scene = scene_, x = probe_x_, y = probe_y_, mount = t.becke_mount] {
       Teaching::ProbeResult r;
       try {
+        if (scene.sample_in && scene.sample.type == SampleType::Grains) {
+          const double nd = scene.sample.medium_index.value_or(kDefaultGrainMountIndex);
+          const bool custom = scene.sample.crystal.has_value();
+          if (!mount->specimen || custom || mount->custom || mount->mineral != scene.sample.mineral ||
+              mount->medium_index != nd) {
+            mount->specimen = grain_mount_specimen(scene);
+            mount->mineral = scene.sample.mineral;
+            mount->medium_index = nd;
+            mount->custom = custom;
+          }
+          r.becke = probe_becke_line(*mount->specimen, scene, x, y);
+          return r;
+        }
         r.probe = probe_pixel(scene, x, y);
         r.grain = grain_at_image_point(scene, x, y);
       } catch (const std::exception& e) {
@@ -248,6 +263,13 @@ void App::draw_teaching() {
   ImGui::Text("At the %s (%.2f, %.2f)", probe_hovered_ ? "cursor" : "probe", probe_x_, probe_y_);
   if (!t.probe_error.empty()) {
     ImGui::TextWrapped("%s", t.probe_error.c_str());
+  } else if (t.becke) {
+    const BeckeProbe& b = *t.becke;
+    ImGui::Text("Over          %s", b.on_fragment ? scene_.sample.mineral.c_str() : "immersion liquid");
+    ImGui::Text("n' (polarizer) %.4f%s", b.mineral_n, b.on_fragment ? "" : " (a fragment of this mount)");
+    ImGui::Text("Liquid n_D    %.4f", b.liquid_n);
+    ImGui::Text("Focus         %+.1f um", scene_.focus_um);
+    ImGui::TextWrapped("Becke line: %s", describe_becke_line(b).c_str());
   } else if (!p.lit) {
     ImGui::TextDisabled("no light reaches this point");
   } else {

@@ -35,9 +35,10 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
   return o;
 }
 
-RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress) {
+RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress,
+                               const std::atomic<bool>* cancel) {
   const auto specimen = grain_mount_specimen(scene);
-  return render_plane_light(*specimen, plane_light_options(scene), progress);
+  return render_plane_light(*specimen, plane_light_options(scene), progress, nullptr, cancel);
 }
 
 }  // namespace pmsim

@@ -3,6 +3,7 @@
 // sample.mineral (or sample.crystal) scattered over the slide in the liquid of n_D
 // sample.medium_index, seen through the scene's objective at focus_um with the condenser's
 // aperture diaphragm condenser.aperture_na (core/specimen/plane_light_image.h).
+#include <atomic>
 #include <functional>
 #include <memory>
 
@@ -22,6 +23,8 @@ std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene);
 // The view: field of view, stage, focus, apertures, polarizer, illuminant and samples of `scene`
 // (render.spp; 0: 64 samples a pixel).
 PlaneLightOptions plane_light_options(const Scene& scene);
-RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr);
+// `cancel` (optional): as render_plane_light's — the interactive app leaves a scene with it.
+RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
+                               const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace pmsim

@@ -56,7 +56,8 @@ double sample_path(const SpecimenScene& scene, const Geometry& g, const glm::dve
 
 RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& o,
                                const std::function<void(const RenderImage&)>& progress,
-                               InterfaceCounters* counters) {
+                               InterfaceCounters* counters, const std::atomic<bool>* cancel) {
+  const auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
   const auto t0 = std::chrono::steady_clock::now();
   const bool mono = o.single_wavelength_nm > 0.0;
   const int nb = mono ? 1 : std::max(1, o.bands);
@@ -124,7 +125,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   for (int pass = 0; pass < passes; ++pass) {
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
       InterfaceCounters local;
-      for (int py = rows.begin(); py < rows.end(); ++py)
+      for (int py = rows.begin(); py < rows.end() && !cancelled(); ++py)
         for (int px = 0; px < w; ++px) {
           const std::size_t pix = std::size_t(py) * w + px;
           SpecimenRandom rng(o.seed ^ splitmix64(pix * 0x100000001b3ull + std::uint64_t(pass) * 0x9e3779b9ull));
@@ -148,6 +149,10 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         counters->add(local);
       }
     });
+    if (cancelled()) {
+      img.converged = false;
+      return img;
+    }
     // Develop: per band the stratified estimate over the empty field's, then XYZ and linear sRGB.
     const double inv_n = 1.0 / (pass + 1);
     for (std::size_t pix = 0; pix < npx; ++pix) {

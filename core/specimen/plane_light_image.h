@@ -18,6 +18,7 @@
 // the specimen) and the annulus outside it, half the samples each, every stratum weighted by its
 // pupil area, so that the empty field has almost no noise and the light bent in from the annulus
 // is still found. Exposure: the empty field (no fragment) of the same stack gives Y = 1.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 
@@ -55,9 +56,12 @@ struct PlaneLightOptions {
 
 // Renders pass by pass (each pass one inner and one annulus sample per band and pixel);
 // `progress` sees the image after each pass. `counters` (optional) sums every Fresnel event.
+// `cancel` (optional, polled every pixel row): once raised, the pass in flight is abandoned and
+// the last finished pass's image is returned (converged = false), so an interactive client can
+// leave a scene within a row's time instead of a whole pass's.
 RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& options,
                                const std::function<void(const RenderImage&)>& progress = nullptr,
-                               InterfaceCounters* counters = nullptr);
+                               InterfaceCounters* counters = nullptr, const std::atomic<bool>* cancel = nullptr);
 
 // The effective condenser NA for an aperture setting (0 → kStoppedDownApertureNa).
 inline double effective_condenser_na(double aperture_na) {

@@ -1,0 +1,31 @@
+#pragma once
+// What the Becke line does at one point of a grain-mount image (the teaching panel's probe): the
+// fragment under the point, the index it offers to light vibrating along the polarizer, and the
+// liquid's n_D, both at the D line. The Becke line is the bright fringe of light refracted (and
+// totally reflected) toward the medium of higher index at an inclined boundary; on focusing up
+// (focus_um increasing) it moves into that medium (Nesse 2012, Introduction to Optical
+// Mineralogy, §4 "Becke line"). The values come from the same SpecimenScene the renderer traces.
+#include <string>
+
+#include "core/microscope/scene.h"
+#include "core/specimen/specimen_scene.h"
+
+namespace pmsim {
+
+struct BeckeProbe {
+  bool on_fragment = false;   // the point lies over a fragment (else over liquid)
+  int fragment = -1;          // nearest fragment index in the mount (the one under the point if on_fragment)
+  double mineral_n = 0.0;     // n' of that fragment along the polarizer at 589.26 nm
+  double liquid_n = 0.0;      // n_D of the liquid
+  // +1: the line moves into the mineral on focusing up (n' > n_D of the liquid); −1: into the
+  // liquid; 0: matched within 0.001 (the outline nearly vanishes, dispersion colours remain).
+  int moves_into_mineral = 0;
+};
+
+// `x`, `y`: fractions of the image from its top left (as the app's probe). The mount is `specimen`
+// (grain_mount_specimen(scene)); the view (stage, field, polarizer) is `scene`'s.
+BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, double x, double y);
+// One line for the teaching panel: what the student sees when focusing up here.
+std::string describe_becke_line(const BeckeProbe& probe);
+
+}  // namespace pmsim
