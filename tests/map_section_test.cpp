@@ -21,7 +21,9 @@
 #include "core/io/scene_file.h"
 #include "core/microscope/map_section.h"
 #include "core/microscope/view_geometry.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/render/progressive_renderer.h"
+#include "core/render/spectral_level.h"
 #include "tests/ebsd_test_files.h"
 
 using namespace pmsim;
@@ -417,4 +419,47 @@ TEST(EbsdMapSection, GridNeighboursFourOnSquareSixOnHexagonal) {
   ASSERT_EQ(grid_neighbours(hx, j, nb), 6);
   for (int t = 0; t < 6; ++t)
     EXPECT_NEAR(std::hypot(hx.x_um(nb[t]) - hx.x_um(j), hx.y_um(nb[t]) - hx.y_um(j)), 1.0, 1e-12) << t;
+}
+
+// The exact plates of a spectral level are prepared for the domains that exact units show, and
+// only those (preparing all of a 10⁶-point map's 10⁴ domains at every band took most of its
+// first image): the lookup gives bit-identical units to preparing every plate on demand.
+TEST(EbsdMapSection, SpectralLevelPreparesExactPlatesOnlyForDomainsExactUnitsShow) {
+  ScratchDir dir;
+  // Left quarter quartz cut ⟂ c (optically active along its axis, with no linear retardation to
+  // hide it: exact units), the rest quartz in 30 orientation clusters 2° apart with c in the
+  // section (modal units).
+  OrientationMap m = uniform_map(40, 10, 10.0, {quartz_phase(1)}, {0, 90, 0});
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const int col = static_cast<int>(i % 40);
+    if (col < 10)
+      set_euler_deg(m, i, 0, 0, 0);
+    else
+      set_euler_deg(m, i, 2.0 * (col - 10), 90, 0);
+  }
+  write_ctf(m, dir / "e.ctf");
+  Scene sc = map_scene(dir / "e.ctf", 64);
+  sc.objective.magnification = 40.0;  // 0.5 mm field: the whole 0.4 mm map
+  const auto plan = compile_evaluation_plan(sc);
+  ASSERT_TRUE(plan);
+  ASSERT_TRUE(plan->any_exact());  // the basal quartz
+  const SpectralLevel L = make_spectral_level(*plan, 16);
+  std::set<int> exact_domains, modal_domains;
+  for (std::size_t u = 0; u < plan->units().size(); ++u)
+    (plan->needs_exact(static_cast<int>(u)) ? exact_domains : modal_domains).insert(plan->units()[u].domain);
+  ASSERT_FALSE(modal_domains.empty());
+  // One slot per domain an exact unit shows, none for the others.
+  ASSERT_EQ(L.prepared.size(), 16u);
+  EXPECT_EQ(L.prepared[0].size(), exact_domains.size());
+  for (int d = 0; d < static_cast<int>(plan->domains().size()); ++d)
+    EXPECT_EQ(L.plate(0, d) != nullptr, exact_domains.count(d) > 0 && plan->domains()[d].crystal) << "domain " << d;
+  // Exact: the same prepare_plate values, looked up or prepared on demand.
+  SpectralLevel on_demand = L;
+  on_demand.prepared.clear();
+  on_demand.prepared_slot.clear();
+  for (std::size_t u = 0; u < plan->units().size(); ++u) {
+    const glm::dvec3 a = evaluate_unit(*plan, L, static_cast<int>(u));
+    const glm::dvec3 b = evaluate_unit(*plan, on_demand, static_cast<int>(u));
+    EXPECT_EQ(a, b) << "unit " << u;
+  }
 }

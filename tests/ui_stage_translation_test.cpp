@@ -1,11 +1,14 @@
 // The mechanical stage in the app: a right-button drag moves the section with the cursor, Ctrl +
 // arrows step a tenth of the field, the turret changes the field of view, and field exports carry
-// a scale bar as long as its label says.
+// a scale bar as long as its label says (and, with render.native=on on an EBSD map, one pixel per
+// map point).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
+#include "core/ebsd/example_map.h"
+#include "core/ebsd/map_writer.h"
 #include "core/io/image_file.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/scale_bar.h"
@@ -90,6 +93,29 @@ TEST(UiStage, FieldExportCarriesAScaleBarOfTheRightLength) {
     }
   }
   EXPECT_NEAR(longest, want.length_px, 0.5);
+}
+
+TEST(UiStage, NativeFieldExportOfAnEbsdMapHasOnePixelPerPoint) {
+  const std::string map = std::string(PMSIM_BINARY_DIR) + "/ui_stage_translation_native.ctf";
+  const std::string path = std::string(PMSIM_BINARY_DIR) + "/ui_stage_translation_native.png";
+  write_ctf(example_quartzite_map(48, 20, 10.0), map);
+  std::filesystem::remove(path);
+  Scene s;
+  s.sample.type = SampleType::Section;
+  s.sample.section = map;
+  s.render.width = s.render.height = 64;
+  s.render.native = true;
+  std::string log;
+  auto d = HeadlessDriver::create(s, 1280, 800, log);
+  ASSERT_TRUE(d) << log;
+  ASSERT_TRUE(run(*d, "wait converged\nexport " + path + "\n").ok);
+  // The export: the map's 48 columns × 20 rows (square steps), as pmsim-render writes it; the
+  // view keeps its 64² image.
+  const LoadedImage im = read_image(path);
+  EXPECT_EQ(im.width, 48);
+  EXPECT_EQ(im.height, 20);
+  EXPECT_EQ(d->app().image().width, 64);
+  EXPECT_EQ(d->app().image().height, 64);
 }
 
 }  // namespace

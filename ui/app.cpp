@@ -13,9 +13,11 @@
 #include "core/base/input_error.h"
 #include "core/base/units.h"  // kPi, radians, degrees
 #include "core/io/scene_file.h"
+#include "core/microscope/native_resolution.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/view_geometry.h"
+#include "core/render/progressive_renderer.h"
 #include "core/render/scale_bar.h"
 #include "ui/asset_lists.h"
 #include "ui/teaching.h"
@@ -175,14 +177,25 @@ bool App::export_field(const std::string& path) {
     return false;
   }
   try {
+    // render.native=on on an EBSD map: the export has one pixel per map point, as pmsim-render
+    // writes it (native_resolution.h), rendered to convergence for it; the view keeps its own size.
+    const Scene native = native_resolution_scene(scene_);
+    const bool reframed = native.render.width != scene_.render.width || native.render.height != scene_.render.height ||
+                          native.eyepiece.field_number_mm != scene_.eyepiece.field_number_mm;
+    RenderImage native_image;
+    if (reframed) {
+      validate_scene(native);  // the map's size against the render limits, as any render.width
+      native_image = ProgressiveRenderer::render(native);
+    }
+    const RenderImage& img = reframed ? native_image : image_;
+    const Scene& shown = reframed ? native : scene_;
     make_parent_folder(path);
-    if (scale_bar_ && scene_.mode == ViewMode::Ortho && !scene_.bertrand_in) {
-      std::vector<float> rgb = image_.rgb;
-      burn_scale_bar(rgb, image_.width, image_.height,
-                     choose_scale_bar(mm_per_pixel(scene_, image_.width, image_.height), image_.width));
-      write_image(path, image_.width, image_.height, rgb, scene_to_json(scene_));
+    if (scale_bar_ && shown.mode == ViewMode::Ortho && !shown.bertrand_in) {
+      std::vector<float> rgb = img.rgb;
+      burn_scale_bar(rgb, img.width, img.height, choose_scale_bar(mm_per_pixel(shown, img.width, img.height), img.width));
+      write_image(path, img.width, img.height, rgb, scene_to_json(shown));
     } else {
-      write_image(path, image_.width, image_.height, image_.rgb, scene_to_json(scene_));
+      write_image(path, img.width, img.height, img.rgb, scene_to_json(shown));
     }
   } catch (const std::exception& e) {
     fail(e.what());

@@ -4,7 +4,9 @@
 // quartzite of core/ebsd/example_map.h, side × side points 5 µm apart, written as .ctf into a
 // temporary folder and looked at through the 4× objective (a 5 mm field: the whole map).
 //   load:       load_map_section (read, phase mapping, grains and clusters: what a scene pays once);
-//   first:      the interactive renderer's first image after a restart, the map already loaded;
+//   first:      the interactive renderer's first image after a restart, the map already loaded (a
+//               new renderer: its image buffers are touched for the first time, as in an app's
+//               first view of the map; later restarts reuse them);
 //   converged:  pmsim-render's render to convergence (render.tolerance 0.5 ΔE00).
 // Speed is paired with error: the first image's mean ΔE00 against the converged one, and the
 // converged image's own error estimate.

@@ -112,7 +112,7 @@ void evaluate_direction(const EvaluationPlan& plan, const SpectralLevel& L, cons
   // estimated from three exact retardations (Γ varies slowly), with a 1.5 safety factor.
   double gamma_max = 0.0;
   for (int b : {0, N / 2, N - 1}) {
-    PreparedPlate p = L.prepared[b][unit.domain];
+    PreparedPlate p = *L.plate(b, unit.domain);
     p.thickness_um = unit.thickness_um;
     gamma_max = std::max(gamma_max, plate_modes(p, k).retardation_nm);
   }
@@ -121,7 +121,7 @@ void evaluate_direction(const EvaluationPlan& plan, const SpectralLevel& L, cons
   if (!sample_jones) {
     modes.resize(N);
     for (int b = 0; b < N; ++b) {
-      PreparedPlate p = L.prepared[b][unit.domain];
+      PreparedPlate p = *L.plate(b, unit.domain);
       p.thickness_um = unit.thickness_um;
       modes[b] = plate_modes(p, k);
     }
@@ -132,7 +132,7 @@ void evaluate_direction(const EvaluationPlan& plan, const SpectralLevel& L, cons
   for (int b = 0; b < N; ++b) {
     double t, t_half = 0.0;
     if (sample_jones) {
-      PreparedPlate p = L.prepared[b][unit.domain];
+      PreparedPlate p = *L.plate(b, unit.domain);
       p.thickness_um = unit.thickness_um;
       t = jones_transmission(L.train[b], plan.with_lenses(plate_jones(p, k), k));
       t_half = t;

@@ -25,14 +25,18 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
   out.terms.resize(units.size() * dirs_per_unit);
   out.unit_exact.assign(units.size(), 0);
   const TrainState train = make_train(scene, plan.compensator(), 550.0);  // its directions only
-  // Anchors prepared once per domain.
-  // In parallel: an EBSD map has 10⁴ domains and more (each anchor independent, the same values
-  // in any order).
+  // Anchors prepared once per domain that a unit shows (a coarse pass over an EBSD map misses
+  // some of its 10⁴ domains). In parallel over those domains (each anchor independent, the same
+  // values in any order).
+  std::vector<char> shown(domains.size(), 0);
+  for (const EvalUnit& u : units) shown[u.domain] = 1;
+  std::vector<int> todo;
+  for (std::size_t d = 0; d < domains.size(); ++d)
+    if (shown[d] && domains[d].crystal) todo.push_back(static_cast<int>(d));
   std::vector<std::array<PreparedPlate, 3>> anchors(domains.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, domains.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t d = r.begin(); d != r.end(); ++d)
-      if (domains[d].crystal)
-        for (int a = 0; a < 3; ++a) anchors[d][a] = plan.prepare(static_cast<int>(d), ModalFit::kAnchorNm[a]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j)
+      for (int a = 0; a < 3; ++a) anchors[todo[j]][a] = plan.prepare(todo[j], ModalFit::kAnchorNm[a]);
   });
   // A conoscopic figure of a uniaxial plate cut ⟂ its optic axis: a radial table of fits.
   RadialModalTable radial;

@@ -72,14 +72,22 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
     }
   }
   if (plan.any_exact()) {
-    // Every domain at every band, in parallel over domains (an EBSD map has 10⁴ and more; each
-    // plate independent, the same values in any order).
+    // Every domain an exact unit shows, at every band, in parallel over domains (each plate
+    // independent, the same values in any order).
     const std::size_t nd = plan.domains().size();
-    L.prepared.assign(L.n, std::vector<PreparedPlate>(nd));
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nd, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t d = r.begin(); d != r.end(); ++d)
-        if (plan.domains()[d].crystal)
-          for (int i = 0; i < L.n; ++i) L.prepared[i][d] = plan.prepare(static_cast<int>(d), L.nm[i]);
+    L.prepared_slot.assign(nd, -1);
+    std::vector<int> todo;
+    for (std::size_t u = 0; u < plan.units().size(); ++u) {
+      const int d = plan.units()[u].domain;
+      if (plan.needs_exact(static_cast<int>(u)) && L.prepared_slot[d] < 0 && plan.domains()[d].crystal) {
+        L.prepared_slot[d] = static_cast<int>(todo.size());
+        todo.push_back(d);
+      }
+    }
+    L.prepared.assign(L.n, std::vector<PreparedPlate>(todo.size()));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t j = r.begin(); j != r.end(); ++j)
+        for (int i = 0; i < L.n; ++i) L.prepared[i][j] = plan.prepare(todo[j], L.nm[i]);
     });
   }
   return L;
@@ -96,7 +104,8 @@ double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& L, int
       t += jones_transmission(train, plan.with_lenses(JonesMatrix::identity(), plan.dir(unit, d)));
     return t / D;
   }
-  PreparedPlate p = L.prepared.empty() ? plan.prepare(unit.domain, L.nm[i]) : L.prepared[i][unit.domain];
+  const PreparedPlate* ready = L.plate(i, unit.domain);
+  PreparedPlate p = ready ? *ready : plan.prepare(unit.domain, L.nm[i]);
   p.thickness_um = unit.thickness_um;
   for (int d = 0; d < D; ++d)
     t += jones_transmission(train, plan.with_lenses(plate_jones(p, plan.dir(unit, d)), plan.dir(unit, d)));

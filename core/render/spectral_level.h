@@ -23,7 +23,17 @@ struct SpectralLevel {
   std::vector<glm::dvec3> moment;  // M = ∫_band w(λ)·(λ − λc) dλ (the weights' slope)
   std::vector<std::array<double, 3>> anchor_w, anchor_dw;  // modal anchor weights at λc (and d/dλ)
   std::vector<TrainState> train;
-  std::vector<std::vector<PreparedPlate>> prepared;  // [band][domain], exact plate model only
+  // The exact plates of the domains that exact units show, [band][slot], slot = prepared_slot[domain]
+  // (−1: not prepared, prepare_plate on demand). Only those: of an EBSD map's 10⁴ domains only the
+  // absorbing and near-axis optically active ones are exact, and plates for all of them at every
+  // band (and the 40 MB of their storage) took most of the map's first image.
+  std::vector<std::vector<PreparedPlate>> prepared;
+  std::vector<int> prepared_slot;
+  // The prepared plate of `domain` at band `band`, or null.
+  const PreparedPlate* plate(int band, int domain) const {
+    const int s = domain < static_cast<int>(prepared_slot.size()) ? prepared_slot[domain] : -1;
+    return s >= 0 ? &prepared[band][s] : nullptr;
+  }
   // The modal kernel's per-band constants, laid out for vector loops over the bands: 1/λc, the
   // anchor weights and their slopes, and M·6/h; `steady[a]` = Σ_bands W·w_a + M·dw_a, the whole
   // non-oscillating term C0 of every band in one product per anchor.
