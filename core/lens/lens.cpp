@@ -155,113 +155,102 @@ LensGeometry::LensGeometry(const LensSpec& s) {
   scale_ = std::max({rho_, thickness_, ledge_});
 }
 
-// Candidate distances first, then the exact acceptance tests (rim, vertex side, ledge height)
-// nearest first: the first accepted candidate is the answer, so the far ones are never tested.
-// Candidates are kept in the order front roots, back roots, ledge roots and sorted stably, so a
-// tie in t resolves to the same surface as testing every root in that order with a strict `<`.
-int LensGeometry::cap_roots(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here,
-                            double* ts) const {
+bool LensGeometry::cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
+                           double& best, LensHit& hit) const {
   const double R = R_[k];
+  double ts[2];
+  int nt = 0;
   if (R == 0.0) {
-    if (from_here) return 0;  // a straight ray cannot meet its own plane again
+    if (from_here) return false;  // a straight ray cannot meet its own plane again
     const double dn = glm::dot(d, axis_);
-    if (dn == 0.0) return 0;
-    ts[0] = glm::dot(vertex_[k] - o, axis_) / dn;
-    return 1;
-  }
-  // |o + t d − C|² = R², stable form (Haines et al., Ray Tracing Gems ch. 7): h = w − b·d.
-  const glm::dvec3 w = o - sphere_center_[k];
-  const double b = glm::dot(w, d);
-  const glm::dvec3 h = w - b * d;
-  const double disc = R * R - glm::dot(h, h);
-  if (disc < 0.0) return 0;
-  const double q = -b - std::copysign(std::sqrt(disc), b);
-  ts[0] = q;
-  if (from_here) return 1;  // the other root, c/q, is the origin itself (c ≈ 0)
-  if (q == 0.0) return 1;
-  ts[1] = (glm::dot(w, w) - R * R) / q;
-  return 2;
-}
-
-bool LensGeometry::cap_accept(int k, const glm::dvec3& o, const glm::dvec3& d, double t, LensHit& hit) const {
-  const double R = R_[k];
-  const glm::dvec3 p = o + t * d;
-  const glm::dvec3 w = p - center_;
-  const double z = glm::dot(w, axis_);
-  const glm::dvec3 rv = w - z * axis_;
-  if (glm::dot(rv, rv) > rho_ * rho_ * (1.0 + 1e-12)) return false;
-  glm::dvec3 n;
-  if (R == 0.0) {
-    n = k == 0 ? -axis_ : axis_;
+    if (dn == 0.0) return false;
+    ts[nt++] = glm::dot(vertex_[k] - o, axis_) / dn;
   } else {
-    const glm::dvec3 ws = p - sphere_center_[k];
-    // Only the cap on the vertex side of the sphere centre belongs to the lens.
-    if (glm::dot(ws, axis_) * R > 1e-12 * R * R) return false;
-    n = (k == 0 ? 1.0 / R : -1.0 / R) * ws;
-    n = glm::normalize(n);
+    // |o + t d − C|² = R², stable form (Haines et al., Ray Tracing Gems ch. 7): h = w − b·d.
+    const glm::dvec3 w = o - sphere_center_[k];
+    const double b = glm::dot(w, d);
+    const glm::dvec3 h = w - b * d;
+    const double disc = R * R - glm::dot(h, h);
+    if (disc < 0.0) return false;
+    const double q = -b - std::copysign(std::sqrt(disc), b);
+    if (from_here) {
+      ts[nt++] = q;  // the other root, c/q, is the origin itself (c ≈ 0)
+    } else {
+      const double c = glm::dot(w, w) - R * R;
+      ts[nt++] = q;
+      if (q != 0.0) ts[nt++] = c / q;
+    }
   }
-  hit = {t, p, n, k == 0 ? LensSurface::Front : LensSurface::Back};
-  return true;
+  bool found = false;
+  for (int i = 0; i < nt; ++i) {
+    const double t = ts[i];
+    if (!(t > t_eps) || !(t < best)) continue;
+    const glm::dvec3 p = o + t * d;
+    const glm::dvec3 w = p - center_;
+    const double z = glm::dot(w, axis_);
+    const glm::dvec3 rv = w - z * axis_;
+    if (glm::dot(rv, rv) > rho_ * rho_ * (1.0 + 1e-12)) continue;
+    glm::dvec3 n;
+    if (R == 0.0) {
+      n = k == 0 ? -axis_ : axis_;
+    } else {
+      const glm::dvec3 ws = p - sphere_center_[k];
+      // Only the cap on the vertex side of the sphere centre belongs to the lens.
+      if (glm::dot(ws, axis_) * R > 1e-12 * R * R) continue;
+      n = (k == 0 ? 1.0 / R : -1.0 / R) * ws;
+      n = glm::normalize(n);
+    }
+    best = t;
+    hit = {t, p, n, k == 0 ? LensSurface::Front : LensSurface::Back};
+    found = true;
+  }
+  return found;
 }
 
-int LensGeometry::ledge_roots(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double* ts) const {
-  if (ledge_ <= 0.0) return 0;
+bool LensGeometry::ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps,
+                             double& best, LensHit& hit) const {
+  if (ledge_ <= 0.0) return false;
   const glm::dvec3 w = o - center_;
   const glm::dvec3 wp = w - glm::dot(w, axis_) * axis_;
   const glm::dvec3 dp = d - glm::dot(d, axis_) * axis_;
   const double A = glm::dot(dp, dp);
-  if (A < 1e-300) return 0;  // parallel to the axis: never meets the cylinder wall
+  if (A < 1e-300) return false;  // parallel to the axis: never meets the cylinder wall
   const double B = glm::dot(wp, dp);
   // Stable quadratic with the same h trick: |wp − (B/A)dp|² is the squared closest distance.
   const glm::dvec3 h = wp - (B / A) * dp;
   const double disc = A * (rho_ * rho_ - glm::dot(h, h));
-  if (disc < 0.0) return 0;
+  if (disc < 0.0) return false;
   const double q = -B - std::copysign(std::sqrt(disc), B);
-  ts[0] = q / A;
-  if (from_here || q == 0.0) return 1;
-  ts[1] = (glm::dot(wp, wp) - rho_ * rho_) / q;
-  return 2;
-}
-
-bool LensGeometry::ledge_accept(const glm::dvec3& o, const glm::dvec3& d, double t, LensHit& hit) const {
-  const glm::dvec3 p = o + t * d;
-  const glm::dvec3 pw = p - center_;
-  const double z = glm::dot(pw, axis_);
-  const double tol = 1e-12 * scale_;
-  if (z < z_edge_[0] - tol || z > z_edge_[1] + tol) return false;
-  hit = {t, p, glm::normalize(pw - z * axis_), LensSurface::Ledge};
-  return true;
+  double ts[2];
+  int nt = 0;
+  ts[nt++] = q / A;
+  if (!from_here && q != 0.0) ts[nt++] = (glm::dot(wp, wp) - rho_ * rho_) / q;
+  bool found = false;
+  for (int i = 0; i < nt; ++i) {
+    const double t = ts[i];
+    if (!(t > t_eps) || !(t < best)) continue;
+    const glm::dvec3 p = o + t * d;
+    const glm::dvec3 pw = p - center_;
+    const double z = glm::dot(pw, axis_);
+    const double tol = 1e-12 * scale_;
+    if (z < z_edge_[0] - tol || z > z_edge_[1] + tol) continue;
+    best = t;
+    hit = {t, p, glm::normalize(pw - z * axis_), LensSurface::Ledge};
+    found = true;
+  }
+  return found;
 }
 
 bool LensGeometry::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_max, LensSurface from,
                              LensHit& hit) const {
+  double best = t_max;
   // Rays starting on the lens skip their own surface analytically; the tiny t_eps only guards
   // the rim, where a ray leaving one surface starts on another as well.
   const double t_eps = from == LensSurface::None ? 0.0 : 1e-10 * scale_;
-  double roots[2];
-  double ts[6];
-  int surf[6];
-  int n = 0;
-  auto add = [&](int count, int s) {
-    for (int i = 0; i < count; ++i) {
-      const double t = roots[i];
-      if (!(t > t_eps) || !(t < t_max)) continue;
-      // Stable insertion: equal t keeps the earlier surface first.
-      int j = n++;
-      for (; j > 0 && ts[j - 1] > t; --j) {
-        ts[j] = ts[j - 1];
-        surf[j] = surf[j - 1];
-      }
-      ts[j] = t;
-      surf[j] = s;
-    }
-  };
-  add(cap_roots(0, o, d, from == LensSurface::Front, roots), 0);
-  add(cap_roots(1, o, d, from == LensSurface::Back, roots), 1);
-  add(ledge_roots(o, d, from == LensSurface::Ledge, roots), 2);
-  for (int i = 0; i < n; ++i)
-    if (surf[i] == 2 ? ledge_accept(o, d, ts[i], hit) : cap_accept(surf[i], o, d, ts[i], hit)) return true;
-  return false;
+  bool found = cap_hit(0, o, d, from == LensSurface::Front, t_eps, best, hit);
+  found |= cap_hit(1, o, d, from == LensSurface::Back, t_eps, best, hit);
+  found |= ledge_hit(o, d, from == LensSurface::Ledge, t_eps, best, hit);
+  return found;
 }
 
 void LensGeometry::bounds(glm::dvec3& lo, glm::dvec3& hi) const {

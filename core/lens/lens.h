@@ -74,12 +74,10 @@ class LensGeometry {
   double size_mm() const { return scale_; }  // a length of the order of the lens' size
 
  private:
-  // Roots of cap k's sphere or plane (ledge: cylinder) along the ray, into ts (≤ 2; from_here drops
-  // the root at the origin); then the test that the point at t lies on the lens part of it.
-  int cap_roots(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double* ts) const;
-  bool cap_accept(int k, const glm::dvec3& o, const glm::dvec3& d, double t, LensHit& hit) const;
-  int ledge_roots(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double* ts) const;
-  bool ledge_accept(const glm::dvec3& o, const glm::dvec3& d, double t, LensHit& hit) const;
+  bool cap_hit(int k, const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps, double& best,
+               LensHit& hit) const;
+  bool ledge_hit(const glm::dvec3& o, const glm::dvec3& d, bool from_here, double t_eps, double& best,
+                 LensHit& hit) const;
   glm::dvec3 center_, axis_;
   double rho_ = 0, thickness_ = 0, ledge_ = 0, scale_ = 1;
   double R_[2] = {0, 0};         // front, back signed radii
