@@ -58,6 +58,21 @@ void event(LensBundle& out, LensEvent::Type type, int depth, double intensity, c
   out.events.push_back({type, depth, intensity, p});
 }
 
+// True when interact() at an exit point would report TIR and the trace would stop there with a
+// Tir event of the ray's whole intensity: then the event is written without interact(), whose TIR
+// branch computes the phases δ⊥, δ∥ (atan2), turns them into r_s, r_p (sincos) and back (arg →
+// atan2) for reflected rays that Stop mode discards. The test is interact()'s own: the same
+// cos θi = min(1, |d·N|), η = n_t/n_i and fresnel.h's cos²θt < 0 (Exact model only; Schlick has
+// its own). interact() would emit the event only if a reflected part has I·a² > 0; with a unit v_p
+// ⟂ d, a_s² + a_p² = 1 to rounding, so one part is ≥ I/2 > 0 whenever I ≥ 1e-300; rays fainter than
+// that take the full path.
+bool stops_at_tir(const LensTraceOptions& opt, const PolarizedRay& r, const glm::dvec3& normal,
+                  const LensMedia& m) {
+  if (opt.tir != TirMode::Stop || opt.fresnel != FresnelModel::Exact || !(r.intensity >= 1e-300)) return false;
+  const double cos_i = std::min(1.0, std::abs(glm::dot(r.dir, normal)));
+  return snell_cos_t2(cos_i, m.n_medium / m.n_glass) < 0.0;
+}
+
 // One linearly polarized ray (pol already ⟂ dir, unit) through the lens.
 void trace_one(const LensGeometry& g, const LensMedia& m, const PolarizedRay& in0,
                const LensTraceOptions& opt, LensBundle& out) {
@@ -125,6 +140,10 @@ void trace_one(const LensGeometry& g, const LensMedia& m, const PolarizedRay& in
       continue;
     }
 
+    if (stops_at_tir(opt, r, hit.normal, m)) {
+      event(out, LensEvent::Type::Tir, r.depth, r.intensity, hit.point);
+      continue;
+    }
     interact(r, hit.point, hit.normal, m.n_glass, m.n_medium, opt.fresnel, res);
     if (res.has_refracted) {
       res.refracted.depth = r.depth;
