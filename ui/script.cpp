@@ -95,7 +95,13 @@ bool settle(UiDriver& driver, double timeout_s, int* frames) {
   for (;;) {
     driver.frame();
     if (frames) ++*frames;
-    if (driver.app().converged()) return true;
+    if (driver.app().converged()) {
+      // The converged image may have arrived in the frame's last snapshot, after the field was
+      // laid out: when that was its first upload (no texture yet), only the next frame shows it.
+      driver.frame();
+      if (frames) ++*frames;
+      return true;
+    }
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s)
       return false;
     driver.app().wait_rendered(0.05);  // let the workers have the cores between frames
