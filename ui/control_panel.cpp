@@ -46,6 +46,27 @@ bool combo_enum(const char* label, E& value, std::initializer_list<const char*> 
   return true;
 }
 
+// The library's minerals as a combo; true on the frame one is chosen (written into `mineral`).
+bool mineral_combo(std::string& mineral) {
+  static const std::vector<std::string> minerals = [] {
+    try {
+      return mineral_names();
+    } catch (const std::exception&) {
+      return std::vector<std::string>{};
+    }
+  }();
+  bool chosen = false;
+  if (ImGui::BeginCombo("Mineral", mineral.c_str())) {
+    for (const auto& name : minerals)
+      if (ImGui::Selectable(name.c_str(), name == mineral)) {
+        mineral = name;
+        chosen = true;
+      }
+    ImGui::EndCombo();
+  }
+  return chosen;
+}
+
 bool vec3_input(const char* label, std::array<double, 3>& v) {
   return ImGui::InputScalarN(label, ImGuiDataType_Double, v.data(), 3, nullptr, nullptr, "%.3f",
                              ImGuiInputTextFlags_EnterReturnsTrue);
@@ -187,21 +208,9 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
   if (s.type == SampleType::Grains) {
     // A grain mount: fragments of sample.mineral in an immersion liquid of n_D sample.medium_index,
     // rendered in plane-polarized light (the analyzer is ignored) by core/specimen.
-    static const std::vector<std::string> minerals = [] {
-      try {
-        return mineral_names();
-      } catch (const std::exception&) {
-        return std::vector<std::string>{};
-      }
-    }();
-    if (ImGui::BeginCombo("Mineral", s.mineral.c_str())) {
-      for (const auto& name : minerals)
-        if (ImGui::Selectable(name.c_str(), name == s.mineral)) {
-          s.mineral = name;
-          s.crystal.reset();
-          changed = true;
-        }
-      ImGui::EndCombo();
+    if (mineral_combo(s.mineral)) {
+      s.crystal.reset();
+      changed = true;
     }
     double nd = s.medium_index.value_or(kDefaultGrainMountIndex);
     if (slider_double("Liquid n_D", nd, 1.40, 1.80, "%.3f")) {
@@ -243,21 +252,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
 
   bool custom = s.crystal.has_value();
   if (!custom) {
-    static const std::vector<std::string> minerals = [] {
-      try {
-        return mineral_names();
-      } catch (const std::exception&) {
-        return std::vector<std::string>{};
-      }
-    }();
-    if (ImGui::BeginCombo("Mineral", s.mineral.c_str())) {
-      for (const auto& name : minerals)
-        if (ImGui::Selectable(name.c_str(), name == s.mineral)) {
-          s.mineral = name;
-          changed = true;
-        }
-      ImGui::EndCombo();
-    }
+    changed |= mineral_combo(s.mineral);
   }
   if (ImGui::Checkbox("Custom crystal by indices", &custom)) {
     if (custom)

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/bench/scratch_dir.h"
 #include "core/ebsd/map_writer.h"
 #include "core/ebsd/read_orientation_map.h"
 
@@ -84,28 +85,19 @@ EbsdLoadResult time_load(const std::string& path, const char* format) {
 }  // namespace
 
 std::vector<EbsdLoadResult> measure_ebsd_load(std::size_t points) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("pmsim-bench-ebsd-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const ScratchDir scratch("ebsd");
+  const std::filesystem::path& dir = scratch.path();
   std::vector<EbsdLoadResult> out;
-  try {
-    {
-      const OrientationMap m = made_up_map(points, MapGrid::Square);
-      write_ctf(m, (dir / "map.ctf").string());
-    }  // the written map is freed before the timed read
-    out.push_back(time_load((dir / "map.ctf").string(), "ctf (square grid)"));
-    {
-      const OrientationMap m = made_up_map(points, MapGrid::Hexagonal);
-      write_ang(m, (dir / "map.ang").string());
-    }
-    out.push_back(time_load((dir / "map.ang").string(), "ang (hexagonal grid)"));
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-    throw;
+  {
+    const OrientationMap m = made_up_map(points, MapGrid::Square);
+    write_ctf(m, (dir / "map.ctf").string());
+  }  // the written map is freed before the timed read
+  out.push_back(time_load((dir / "map.ctf").string(), "ctf (square grid)"));
+  {
+    const OrientationMap m = made_up_map(points, MapGrid::Hexagonal);
+    write_ang(m, (dir / "map.ang").string());
   }
-  std::error_code ec;
-  std::filesystem::remove_all(dir, ec);
+  out.push_back(time_load((dir / "map.ang").string(), "ang (hexagonal grid)"));
   return out;
 }
 
