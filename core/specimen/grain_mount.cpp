@@ -60,6 +60,23 @@ glm::dmat3 random_rotation(SpecimenRandom& rng) {
 
 }  // namespace
 
+glm::dmat3 cleavage_orientation(const glm::dvec3& n_in, double azimuth_rad, bool flip) {
+  // An orthonormal frame (e1, e2, n) in crystal coordinates; the rotation takes it to the lab's
+  // (x, y, ±z), then turns about z. Its transpose maps lab to crystal, so crystal_to_lab = Rz·Fᵀ
+  // with F's rows e1, e2, n: crystal_to_lab · n = ±z exactly (to rounding).
+  const glm::dvec3 n = glm::normalize(flip ? -n_in : n_in);
+  const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 e1 = glm::normalize(glm::cross(helper, n));
+  const glm::dvec3 e2 = glm::cross(n, e1);
+  // Columns of crystal_to_lab are the images of crystal X, Y, Z: row i of F is e1, e2, n, so the
+  // image of crystal axis j is (e1[j], e2[j], n[j]) before the turn.
+  glm::dmat3 to_lab;
+  for (int j = 0; j < 3; ++j) to_lab[j] = glm::dvec3(e1[j], e2[j], n[j]);
+  const double c = std::cos(azimuth_rad), s = std::sin(azimuth_rad);
+  const glm::dmat3 rz(glm::dvec3(c, s, 0), glm::dvec3(-s, c, 0), glm::dvec3(0, 0, 1));
+  return rz * to_lab;
+}
+
 FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdivisions) {
   FragmentMesh m;
   std::vector<glm::dvec3> unit;
@@ -97,6 +114,19 @@ FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdiv
     const glm::dvec3 p = glm::dvec3(r * flat.x, r * flat.y, flat.z) * scale;
     m.vertices.push_back({c * p.x - s * p.y, s * p.x + c * p.y, p.z});
   }
+  // Cleavage faces: each vertex outside a slab is pulled in along its ray from the centre onto
+  // the slab's face. The blob stays star-shaped about the centre (inside every slab), and a
+  // triangle whose corners all land on one face lies in that plane: a flat cleavage face.
+  for (const glm::dvec3& n_lab : shape.clip_normals) {
+    // Half-extent of the (unmodulated) blob along n: the support of the scaled ellipsoid.
+    const glm::dvec3 nl{c * n_lab.x + s * n_lab.y, -s * n_lab.x + c * n_lab.y, n_lab.z};  // fragment frame
+    const double extent = glm::length(nl * scale);
+    const double d = shape.clip_fraction * extent;
+    for (glm::dvec3& p : m.vertices) {
+      const double a = glm::dot(p, n_lab);
+      if (std::abs(a) > d) p *= d / std::abs(a);
+    }
+  }
   double zmin = 1e300, zmax = -1e300;
   for (const auto& p : m.vertices) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
   for (auto& p : m.vertices) p += glm::dvec3(shape.centre_um, gap_um - zmin);
@@ -120,7 +150,20 @@ std::vector<FragmentShape> scatter_fragments(const ScatterOptions& o) {
     f.roughness = 0.08 + 0.12 * rng.uniform();
     f.seed = splitmix64(o.seed ^ (0x5bd1e995ull * std::uint64_t(attempt + 1)));
     f.centre_um = {(rng.uniform() - 0.5) * o.field_width_um, (rng.uniform() - 0.5) * o.field_height_um};
-    f.crystal_to_lab = random_rotation(rng);
+    if (o.cleavage_normals.empty()) {
+      f.crystal_to_lab = random_rotation(rng);
+    } else {
+      // Three draws, as random_rotation takes: the turn about z, which cleavage, which side up.
+      const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+      const std::size_t k = std::min(o.cleavage_normals.size() - 1, std::size_t(u2 * o.cleavage_normals.size()));
+      f.crystal_to_lab = cleavage_orientation(o.cleavage_normals[k], 2.0 * kPi * u1, u3 < 0.5);
+      for (std::size_t j = 0; j < o.cleavage_normals.size(); ++j) {
+        if (j == k) continue;
+        const glm::dvec3 n = glm::normalize(f.crystal_to_lab * o.cleavage_normals[j]);
+        // A cleavage (nearly) parallel to the one it lies on adds no outline.
+        if (std::abs(n.z) < 0.95) f.clip_normals.push_back(n);
+      }
+    }
     // Bounding circle of the modulated blob: radius ≤ (1 + roughness)·size/2; keep 2 µm of liquid.
     const double rad = 0.5 * f.size_um * (1.0 + f.roughness);
     bool free = true;

@@ -28,6 +28,11 @@ struct FragmentShape {
   double flatness = 8.0;
   std::uint64_t seed = 1;         // the lobes' phases and directions
   glm::dmat3 crystal_to_lab{1.0};  // columns: crystal X, Y, Z (indicatrix axes) in the lab frame
+  // A cleavage fragment's other cleavage planes (unit normals, lab frame): the blob is cut to the
+  // slab |(p − centre)·n| ≤ clip_fraction × its half-extent along n for each, so that its outline
+  // runs along those cleavages' traces in straight (possibly inclined) faces.
+  std::vector<glm::dvec3> clip_normals;
+  double clip_fraction = 0.7;
 };
 
 struct FragmentMesh {
@@ -47,11 +52,21 @@ struct ScatterOptions {
   // Fragments settle on their broad side: the vertical semi-axis is at most this, so that one
   // focus shows small and large fragments together in a liquid film of ~2× this thickness.
   double max_half_height_um = 40.0;
+  // The mineral's good (perfect, very good, good) cleavage planes, unit normals in the indicatrix
+  // frame (crystal X, Y, Z). Empty: fragments of fracture, uniformly random orientations. Else
+  // cleavage fragments: each lies flat on one of them (drawn at random), turned at random about
+  // the vertical, its outline cut along the others (FragmentShape::clip_normals).
+  std::vector<glm::dvec3> cleavage_normals;
   std::uint64_t seed = 12;
 };
+
+// The orientation (crystal_to_lab) of a fragment lying on the cleavage of unit normal `n` (the
+// indicatrix frame): n along +z (or −z if `flip`), then turned by `azimuth_rad` about z.
+glm::dmat3 cleavage_orientation(const glm::dvec3& n, double azimuth_rad, bool flip);
 // Fragments placed at random without overlap (rejection of overlapping bounding circles), random
 // size, shape, azimuth and a uniformly random 3-D orientation of the crystal (Shoemake's
-// quaternion method). Reproducible from options.seed.
+// quaternion method), or a cleavage fragment's (see cleavage_normals). Reproducible from
+// options.seed; a mineral without cleavage draws the same mount as before cleavage existed.
 std::vector<FragmentShape> scatter_fragments(const ScatterOptions& options);
 
 }  // namespace pmsim

@@ -1,16 +1,39 @@
 #include "core/specimen/grain_mount_render.h"
 
 #include <algorithm>
+#include <string>
 
 #include "core/base/units.h"
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/view_geometry.h"
 
 namespace pmsim {
 
+std::vector<glm::dvec3> good_cleavage_normals(const std::string& mineral) {
+  std::vector<glm::dvec3> out;
+  const MineralCrystallography* mc = find_mineral_crystallography(mineral);
+  if (!mc) return out;
+  const bool isotropic = find_mineral(mineral).symmetry() == CrystalSymmetry::Isotropic;
+  // Without an optical orientation the indicatrix axes of an anisotropic mineral are not placed in
+  // its lattice: its planes cannot be put in the fragment's (indicatrix) frame.
+  if (!isotropic && !mc->orientation) return out;
+  for (const Cleavage& c : mc->cleavage) {
+    if (c.quality != CleavageQuality::Perfect && c.quality != CleavageQuality::VeryGood &&
+        c.quality != CleavageQuality::Good)
+      continue;
+    // The plane normal in the crystal Cartesian frame, then in the indicatrix frame (X, Y, Z the
+    // columns of indicatrix_axes): its components along them.
+    const glm::dvec3 n = plane_normal(mc->cell, c.plane);
+    out.push_back(isotropic ? n : glm::transpose(mc->indicatrix_axes) * n);
+  }
+  return out;
+}
+
 std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene) {
   ScatterOptions so;
   so.field_width_um = so.field_height_um = 4000.0;
+  if (!scene.sample.crystal) so.cleavage_normals = good_cleavage_normals(scene.sample.mineral);
   const std::vector<FragmentShape> fragments = scatter_fragments(so);
   const Crystal mineral =
       scene.sample.crystal ? crystal_from_indices(*scene.sample.crystal) : find_mineral(scene.sample.mineral);

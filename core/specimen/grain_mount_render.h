@@ -6,6 +6,10 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/microscope/scene.h"
 #include "core/render/render_image.h"
@@ -17,6 +21,9 @@ namespace pmsim {
 // n_D of the liquid when sample.medium_index is not set: that of the usual mounting media.
 constexpr double kDefaultGrainMountIndex = 1.54;
 
+// The good (perfect, very good, good) cleavages of a library mineral as unit normals in its
+// indicatrix frame (what ScatterOptions::cleavage_normals takes); empty without lattice data.
+std::vector<glm::dvec3> good_cleavage_normals(const std::string& mineral);
 // The mount on the slide: a fixed 4 mm × 4 mm spread of fragments (the same slide whatever the
 // mineral or liquid; the stage moves and turns it), in the liquid the scene names.
 std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene);
