@@ -37,6 +37,7 @@
 #include "core/microscope/map_section.h"
 #include "core/microscope/native_resolution.h"
 #include "core/microscope/section_map.h"
+#include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
 #include "core/specimen/grain_mount_render.h"
@@ -218,6 +219,9 @@ int main(int argc, char** argv) {
       width = img.width;
       height = img.height;
       rgb = std::move(img.rgb);
+      // render.exposure_ev scales the 8-bit PNG only (before the scale bar, which stays white);
+      // EXR and TIFF are linear floats and carry the key in their scene metadata.
+      if (ends_with_ci(args.out, ".png")) rgb = pmsim::exposed(rgb, scene.render.exposure_ev);
       meta = pmsim::scene_to_json(scene);
       if (args.scale_bar)
         pmsim::burn_scale_bar(rgb, width, height,

@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include "core/io/image_file.h"
+#include "core/render/exposure.h"
 #include "core/base/input_error.h"
 #include "core/base/units.h"  // kPi, radians, degrees
 #include "core/io/scene_file.h"
@@ -190,13 +191,12 @@ bool App::export_field(const std::string& path) {
     const RenderImage& img = reframed ? native_image : image_;
     const Scene& shown = reframed ? native : scene_;
     make_parent_folder(path);
-    if (scale_bar_ && shown.mode == ViewMode::Ortho && !shown.bertrand_in) {
-      std::vector<float> rgb = img.rgb;
+    // The exposure as on screen, for an 8-bit export (PNG); EXR and TIFF stay linear.
+    const bool eight_bit = std::filesystem::path(path).extension() == ".png";
+    std::vector<float> rgb = eight_bit ? exposed(img.rgb, shown.render.exposure_ev) : img.rgb;
+    if (scale_bar_ && shown.mode == ViewMode::Ortho && !shown.bertrand_in)
       burn_scale_bar(rgb, img.width, img.height, choose_scale_bar(mm_per_pixel(shown, img.width, img.height), img.width));
-      write_image(path, img.width, img.height, rgb, scene_to_json(shown));
-    } else {
-      write_image(path, img.width, img.height, img.rgb, scene_to_json(shown));
-    }
+    write_image(path, img.width, img.height, rgb, scene_to_json(shown));
   } catch (const std::exception& e) {
     fail(e.what());
     return false;
@@ -235,7 +235,7 @@ void App::pull_snapshot() {
     feed_->submit(scene_, ++generation_);
   }
   if (feed_->snapshot(image_, image_current_)) {
-    field_texture_.upload(image_.width, image_.height, image_.rgb);
+    field_texture_.upload(image_.width, image_.height, image_.rgb, exposure_gain(scene_.render.exposure_ev));
     ++counters_.uploads;
   }
 }

@@ -11,6 +11,7 @@
 #include "core/microscope/map_section.h"
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
+#include "core/render/exposure.h"
 #include "core/specimen/grain_mount_render.h"
 #include "ui/app.h"
 #include "ui/asset_lists.h"
@@ -354,6 +355,9 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   changed |= ImGui::SliderInt("Wavelengths", &r.wavelengths, 0, 128, r.wavelengths ? "%d" : "auto");
   changed |= ImGui::SliderInt("Samples/pixel", &r.spp, 0, 64, r.spp ? "%d" : "auto");
   changed |= slider_double("Tolerance", r.tolerance_de2000, 0.1, 5.0, "%.2f dE00");
+  changed |= slider_double("Exposure", r.exposure_ev, kMinExposureEv, kMaxExposureEv, "%+.1f EV");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("stops: the field and PNG exports x 2^EV (e.g. -1 keeps a Becke line's excess light from clipping)");
   static const int kSizes[] = {128, 256, 384, 512, 768};
   if (ImGui::BeginCombo("Image size", (std::to_string(r.width) + " x " + std::to_string(r.height)).c_str())) {
     for (int s : kSizes)

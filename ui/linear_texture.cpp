@@ -37,13 +37,14 @@ void LinearTexture::release() {
   width_ = height_ = 0;
 }
 
-void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_linear) {
+void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_linear, double gain) {
+  const float k = static_cast<float>(gain);
   if (width <= 0 || height <= 0 || rgb_linear.size() < static_cast<size_t>(width) * height * 3) return;
   staging_.resize(static_cast<size_t>(width) * height * 4);
   for (size_t i = 0, n = static_cast<size_t>(width) * height; i < n; ++i) {
-    staging_[4 * i + 0] = encode(rgb_linear[3 * i + 0]);
-    staging_[4 * i + 1] = encode(rgb_linear[3 * i + 1]);
-    staging_[4 * i + 2] = encode(rgb_linear[3 * i + 2]);
+    staging_[4 * i + 0] = encode(k * rgb_linear[3 * i + 0]);
+    staging_[4 * i + 1] = encode(k * rgb_linear[3 * i + 1]);
+    staging_[4 * i + 2] = encode(k * rgb_linear[3 * i + 2]);
     staging_[4 * i + 3] = 255;
   }
   GlFunctions& g = gl();

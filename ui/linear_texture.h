@@ -14,7 +14,8 @@ class LinearTexture {
   LinearTexture& operator=(const LinearTexture&) = delete;
 
   // rgb_linear: width*height*3 floats, top row first.
-  void upload(int width, int height, const std::vector<float>& rgb_linear);
+  // `gain`: the exposure (render.exposure_ev as 2^ev) applied before the encoding.
+  void upload(int width, int height, const std::vector<float>& rgb_linear, double gain = 1.0);
   void release();  // deletes the GL texture (call while the context is current)
   bool valid() const { return id_ != 0 && width_ > 0; }
   void* imgui_id() const { return reinterpret_cast<void*>(static_cast<std::uintptr_t>(id_)); }

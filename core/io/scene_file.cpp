@@ -246,6 +246,8 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
       {"render.native", [](Scene& s, const json& v) { s.render.native = as_on_off(v); },
        [](const Scene& s) -> json { return s.render.native ? json("on") : json(nullptr); }},
+      {"render.exposure_ev", [](Scene& s, const json& v) { s.render.exposure_ev = as_number(v); },
+       [](const Scene& s) -> json { return s.render.exposure_ev != 0.0 ? json(s.render.exposure_ev) : json(nullptr); }},
       {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },

@@ -101,6 +101,9 @@ struct RenderSettings {
   // render.native: on|off. On an EBSD map, one pixel per map point and the field framing the map
   // (core/microscope/native_resolution.h); no effect on other samples.
   bool native = false;
+  // render.exposure_ev: stops of exposure of 8-bit outputs (PNG, the app's field), image × 2^ev
+  // before encoding (core/render/exposure.h); −10…10, 0 as rendered.
+  double exposure_ev = 0.0;
 };
 
 struct OpticsSettings {

@@ -10,6 +10,7 @@
 #include "core/crystal/crystal_cut.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/sample_source.h"
+#include "core/render/exposure.h"
 
 namespace pmsim {
 
@@ -174,6 +175,9 @@ void check_scene(const Scene& s, const std::string& file) {
           "must be 0 (white light) or within 380–780 nm");
   require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file, "render.tolerance",
           num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
+  require(std::isfinite(s.render.exposure_ev) && s.render.exposure_ev >= kMinExposureEv &&
+              s.render.exposure_ev <= kMaxExposureEv,
+          file, "render.exposure_ev", num(s.render.exposure_ev), "must be in −10…10 (stops)");
   require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= 10, file, "optics.lens_depth",
           num(s.optics.lens_depth), "must be in 0…10");
 }

@@ -1,0 +1,19 @@
+#pragma once
+// The photographer's exposure of an 8-bit output (render.exposure_ev): linear RGB × 2^ev before
+// the sRGB encoding, so that light above the empty field (a Becke line's excess, > 1) can be
+// brought under 255 instead of clipping. Linear outputs (EXR, float TIFF) stay unscaled: the
+// scene in their metadata records the exposure for whoever encodes them.
+#include <vector>
+
+namespace pmsim {
+
+// The range scene_check accepts: ±10 stops (a factor of ~1000 either way) covers every image
+// pmsim makes, from a near-extinct section to the brightest fringe.
+constexpr double kMinExposureEv = -10.0, kMaxExposureEv = 10.0;
+
+// 2^ev, the linear gain of `ev` stops.
+double exposure_gain(double ev);
+// rgb_linear × 2^ev (a copy; the input untouched, it may be a shared render buffer).
+std::vector<float> exposed(const std::vector<float>& rgb_linear, double ev);
+
+}  // namespace pmsim
