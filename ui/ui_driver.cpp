@@ -109,6 +109,11 @@ void UiDriver::inject_key(int glfw_key, bool shift, bool ctrl) {
 
 void UiDriver::inject_text(const std::string& utf8) { text_pending_ += utf8; }
 
+void UiDriver::inject_wheel(float notches, bool ctrl) {
+  wheel_pending_ += notches;
+  wheel_ctrl_pending_ = ctrl;
+}
+
 void UiDriver::apply_injected_input() {
   ImGuiIO& io = ImGui::GetIO();
   if (mouse_injected_) {
@@ -126,6 +131,14 @@ void UiDriver::apply_injected_input() {
     io.KeyCtrl = mods_pending_ctrl_;
     keys_down_.swap(keys_pending_);
     keys_pending_.clear();
+  }
+  // A wheel turn lasts one frame, as ImGui clears io.MouseWheel after each; so does its Ctrl.
+  if (wheel_ctrl_down_) io.KeyCtrl = false, wheel_ctrl_down_ = false;
+  if (wheel_pending_ != 0.0f) {
+    io.MouseWheel += wheel_pending_;
+    if (wheel_ctrl_pending_) io.KeyCtrl = true, wheel_ctrl_down_ = true;
+    wheel_pending_ = 0.0f;
+    wheel_ctrl_pending_ = false;
   }
   if (!text_pending_.empty()) {
     io.AddInputCharactersUTF8(text_pending_.c_str());

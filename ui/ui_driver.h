@@ -49,6 +49,9 @@ class UiDriver {
   void release_mouse();  // stop overriding the mouse (window driver: back to the real one)
   void inject_key(int glfw_key, bool shift, bool ctrl);
   void inject_text(const std::string& utf8);
+  // Mouse-wheel notches (+ = away from the user) with Ctrl held or not, for one frame, at the
+  // injected mouse position.
+  void inject_wheel(float notches, bool ctrl);
 
  protected:
   UiDriver() = default;
@@ -77,6 +80,8 @@ class UiDriver {
   std::vector<int> keys_down_;     // held during the current frame
   std::vector<int> keys_pending_;  // pressed on the next frame
   bool shift_ = false, ctrl_ = false;
+  float wheel_pending_ = 0.0f;
+  bool wheel_ctrl_pending_ = false, wheel_ctrl_down_ = false;
   bool mods_pending_shift_ = false, mods_pending_ctrl_ = false;
   std::string text_pending_;
 };
