@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace pmsim {
@@ -25,6 +26,9 @@ SpecimenScene::SpecimenScene(const std::vector<FragmentShape>& fragments, const 
       back_.push_back(kFirstFragment + int(k));
     }
     orientations_.push_back(fragments[k].crystal_to_lab);
+    FragmentBox box{glm::dvec2(1e300), glm::dvec2(-1e300)};
+    for (const glm::dvec3& v : m.vertices) box.lo = glm::min(box.lo, glm::dvec2(v)), box.hi = glm::max(box.hi, glm::dvec2(v));
+    boxes_.push_back(box);
     top = std::max(top, m.z_max_um);
     extent = std::max(extent, glm::length(fragments[k].centre_um) + fragments[k].size_um);
   }

@@ -38,6 +38,12 @@ struct SpecimenHit {
   unsigned prim = 0;
 };
 
+// A fragment's horizontal bounding box (µm, lab frame): a ray that stays outside every box while
+// it crosses the liquid layer meets only the plane faces of the empty stack.
+struct FragmentBox {
+  glm::dvec2 lo{0.0}, hi{0.0};
+};
+
 class SpecimenScene {
  public:
   // `mineral`: the fragments' crystal; `glass`: slide and cover glass; `air` above and below.
@@ -61,6 +67,7 @@ class SpecimenScene {
   double cover_top_z_um() const { return layers_.liquid_um + layers_.cover_um; }
   double mid_plane_z_um() const { return 0.5 * layers_.liquid_um; }
   std::size_t fragment_count() const { return orientations_.size(); }
+  const std::vector<FragmentBox>& fragment_boxes() const { return boxes_; }
   const ImmersionLiquid& liquid() const { return liquid_; }
   const Medium& glass() const { return glass_; }
   const Medium& air() const { return air_; }
@@ -75,6 +82,7 @@ class SpecimenScene {
   const Medium& glass_;
   const Medium& air_;
   std::vector<glm::dmat3> orientations_;  // per fragment, crystal_to_lab
+  std::vector<FragmentBox> boxes_;        // per fragment
   std::vector<glm::dvec3> vertices_;      // double copies for exact normals
   std::vector<glm::uvec3> triangles_;
   std::vector<int> front_, back_;         // per triangle: medium on the normal's side, and behind
