@@ -120,7 +120,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
   }
   // The refracting specimen's rows (issue 12), under the same filters as the scenes above.
   if (std::string("grain-mount-garnet-1.54").find(opt.scene_filter) != std::string::npos &&
-      std::string("plane-light-reference-half plane-light-first-pass plane-light-64spp").find(opt.strategy_filter) !=
+      std::string("plane-light-reference plane-light-preview plane-light-first-pass plane-light-64spp plane-light-256spp-or-tolerance-1").find(opt.strategy_filter) !=
           std::string::npos)
     for (BenchRow& row : grain_mount_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
   if (opt.throughput_rays > 0) {

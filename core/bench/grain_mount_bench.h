@@ -1,8 +1,10 @@
 #pragma once
 // The bench rows of the refracting specimen (issue 12): a grain mount of garnet in a liquid of
-// 1.54 at focus_um = 5, plane light, size² pixels — the time to the first progressive image and to
-// 64 samples a pixel, each with its mean CIEDE2000 against an independent 256-sample reference
-// (another seed), and the reference's own convergence (its 128-sample image against it).
+// 1.54 at focus_um = 5, plane light, size² pixels, rendered as the product renders it — the
+// preview, the first full pass, 64 paths a pixel, and the image that stops at a split-half
+// estimate below 1 or at 256 paths — each with its time
+// (wall and CPU) and mean CIEDE2000 against an independent 1024-path reference (another seed;
+// its own split-half estimate on its row).
 #include <ostream>
 #include <vector>
 
