@@ -105,6 +105,19 @@ bool App::commit(const Scene& candidate) {
     ++counters_.rejected;
     return false;
   }
+  // The exposure alone changes how the image is encoded, not the image: no restart, a re-upload.
+  if (candidate.render.exposure_ev != scene_.render.exposure_ev) {
+    Scene same = candidate;
+    same.render.exposure_ev = scene_.render.exposure_ev;
+    if (scene_to_json(same) == scene_to_json(scene_)) {
+      previous_scene_ = scene_;
+      scene_ = candidate;
+      if (image_.width > 0) field_texture_.upload(image_.width, image_.height, image_.rgb, exposure_gain(scene_.render.exposure_ev));
+      ++counters_.commits;
+      error_.clear();
+      return true;
+    }
+  }
   previous_scene_ = scene_;
   scene_ = candidate;
   ++generation_;
