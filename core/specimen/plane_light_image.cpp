@@ -392,7 +392,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     // Split half: mean ΔE00 between the halves over the whole image (inactive pixels: 0), over at
     // most 65536 active pixels. For Gaussian noise the whole's error would be half of it; the light
     // a stopped-down condenser lets through the annulus is heavy-tailed (rare rays of ~68 empty
-    // fields), and half of it was measured 1.5–2× below the error against a 16× longer render, so
+    // fields), and half of it was measured 2–3× below the error against a 16× longer render, so
     // the estimate is the halves' difference itself: a render stops late rather than early.
     std::optional<double> err;
     if (na == 0) {
