@@ -26,30 +26,58 @@ struct Geometry {
   bool annulus;
   double z_air, z_start;
   glm::dvec3 vibration;  // polarizer direction in the specimen frame
+  glm::dvec3 analyzer;   // analyzer direction in the specimen frame
+  bool analyzer_in = false, scalar = false;
   double c, s;           // cos, sin of −stage
 };
 
 glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) { return {c * v.x - s * v.y, s * v.x + c * v.y, v.z}; }
 
-// One sample: stratum 0 = inner disk, 1 = annulus; returns the light the ray finds (0 or T).
+// One sample: stratum 0 = inner disk, 1 = annulus; returns the light the ray finds (0 if it
+// leaves outside the condenser's cone). `analyzer_in` false: the analyzer out whatever g says
+// (the exposure of the empty field).
 double sample_path(const SpecimenScene& scene, const Geometry& g, const glm::dvec2& point_um, int stratum,
-                   double wavelength_nm, double u1, double u2, InterfaceCounters* counters) {
+                   double wavelength_nm, double u1, double u2, bool analyzer_in, InterfaceCounters* counters) {
   const double sin_t = stratum == 0 ? g.r_in * std::sqrt(u1)
                                     : std::sqrt(g.r_in * g.r_in + (g.na * g.na - g.r_in * g.r_in) * u1);
   const double phi = 2.0 * kPi * u2;
   const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t));
   const glm::dvec3 d = rotate_z({sin_t * std::cos(phi), sin_t * std::sin(phi), -cos_t}, g.c, g.s);
   const glm::dvec3 focus{point_um, g.z_air};
-  PolarizedRay ray;
-  ray.dir = d;
-  ray.origin = focus + ((g.z_start - g.z_air) / d.z) * d;
-  ray.wavelength_nm = wavelength_nm;
-  ray.intensity = 1.0;
-  ray.pol = g.vibration;
-  const SpecimenPath p = trace_specimen(scene, ray, counters);
-  if (!p.left_below) return 0.0;
-  const double sin_exit = std::sqrt(p.exit_dir.x * p.exit_dir.x + p.exit_dir.y * p.exit_dir.y);
-  return sin_exit <= g.nac ? p.throughput : 0.0;
+  const glm::dvec3 origin = focus + ((g.z_start - g.z_air) / d.z) * d;
+  if (g.scalar) {
+    PolarizedRay ray;
+    ray.dir = d;
+    ray.origin = origin;
+    ray.wavelength_nm = wavelength_nm;
+    ray.intensity = 1.0;
+    ray.pol = g.vibration;
+    const SpecimenPath p = trace_specimen(scene, ray, counters);
+    if (!p.left_below) return 0.0;
+    const double sin_exit = std::sqrt(p.exit_dir.x * p.exit_dir.x + p.exit_dir.y * p.exit_dir.y);
+    return sin_exit <= g.nac ? p.throughput : 0.0;
+  }
+  JonesPathRequest q;
+  q.origin = origin;
+  q.dir = d;
+  q.wavelength_nm = wavelength_nm;
+  q.starts = analyzer_in ? 1 : 2;
+  q.start_vibration = analyzer_in ? g.analyzer : g.vibration;
+  q.polarizer = g.vibration;
+  q.condenser_sin_max = g.nac;
+  const JonesPath p = trace_specimen_jones(scene, q, counters);
+  const double I = p.intensity(q.starts);
+  return std::isfinite(I) ? I : 0.0;
+}
+
+// The radical inverse in base 2 (van der Corput): a stratified offset for pass k of any prefix.
+double van_der_corput(std::uint32_t k) {
+  k = (k << 16) | (k >> 16);
+  k = ((k & 0x00ff00ffu) << 8) | ((k & 0xff00ff00u) >> 8);
+  k = ((k & 0x0f0f0f0fu) << 4) | ((k & 0xf0f0f0f0u) >> 4);
+  k = ((k & 0x33333333u) << 2) | ((k & 0xccccccccu) >> 2);
+  k = ((k & 0x55555555u) << 1) | ((k & 0xaaaaaaaau) >> 1);
+  return double(k) * 0x1.0p-32;
 }
 
 }  // namespace
@@ -60,7 +88,8 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   const auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
   const auto t0 = std::chrono::steady_clock::now();
   const bool mono = o.single_wavelength_nm > 0.0;
-  const int nb = mono ? 1 : std::max(1, o.bands);
+  const bool analyzer_in = o.analyzer_in && !o.scalar_tracer;
+  const int nb = mono ? 1 : std::max(analyzer_in ? kCrossedPolarBands : 1, o.bands);
   // Band weights W_b = ∫_band w(λ) dλ with w the observer × illuminant weight (Y = 1 for T ≡ 1),
   // by the midpoint rule at 1 nm.
   std::vector<glm::dvec3> W(nb, glm::dvec3(0.0));
@@ -87,6 +116,9 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   g.c = std::cos(-o.stage_rad);
   g.s = std::sin(-o.stage_rad);
   g.vibration = rotate_z({std::cos(o.polarizer_rad), std::sin(o.polarizer_rad), 0.0}, g.c, g.s);
+  g.analyzer = rotate_z({std::cos(o.analyzer_rad), std::sin(o.analyzer_rad), 0.0}, g.c, g.s);
+  g.analyzer_in = analyzer_in;
+  g.scalar = o.scalar_tracer;
   const int strata = g.annulus ? 2 : 1;
   const double stratum_weight[2] = {g.annulus ? g.a_in : 1.0, 1.0 - g.a_in};
 
@@ -103,7 +135,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         for (int k = 0; k < kPaths; ++k) {
           const double lambda = mono ? o.single_wavelength_nm : band_lo[b] + band_width[b] * rng.uniform();
           const double u1 = rng.uniform(), u2 = rng.uniform();
-          sum += sample_path(empty, g, {0.0, 0.0}, st, lambda, u1, u2, nullptr);
+          sum += sample_path(empty, g, {0.0, 0.0}, st, lambda, u1, u2, false, nullptr);
         }
         background[b] += stratum_weight[st] * sum / kPaths;
       }
@@ -112,7 +144,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
 
   const int w = o.width, h = o.height;
   const std::size_t npx = std::size_t(w) * h;
-  std::vector<float> acc(npx * nb * strata, 0.0f);
+  std::vector<float> acc(npx * nb, 0.0f);  // per band, the strata already weighted
   const int passes = std::max(1, (o.spp + nb * strata - 1) / (nb * strata));
   RenderImage img;
   img.width = w;
@@ -120,7 +152,12 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   img.rgb.assign(npx * 3, 0.0f);
   img.xyz.assign(npx * 3, 0.0f);
   img.wavelengths = nb;
-  img.model_report = "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized light";
+  img.model_report = o.scalar_tracer ? "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized "
+                                       "light, one linear vibration"
+                     : analyzer_in ? "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                                     "splitting, coherent sum), analyzer in"
+                                   : "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                                     "splitting), plane-polarized light";
   std::mutex counter_mutex;
   for (int pass = 0; pass < passes; ++pass) {
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -136,11 +173,16 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
             const double jx = rng.uniform(), jy = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
             const glm::dvec3 f{(px + jx - 0.5 * w) * o.um_per_px, (0.5 * h - (py + jy)) * o.um_per_px, 0.0};
             const glm::dvec3 p = rotate_z(f, g.c, g.s);
-            const double band_jitter = rng.uniform();
+            // The band offset: this pass's van der Corput point, rotated by a per-pixel (not per
+            // pass) random shift, so every prefix of passes covers each band evenly.
+            double band_jitter = van_der_corput(std::uint32_t(pass)) +
+                                 SpecimenRandom(o.seed ^ splitmix64(pix * 4 + std::uint64_t(st) + 0x6a09e667ull)).uniform();
+            band_jitter -= std::floor(band_jitter);
             for (int b = 0; b < nb; ++b) {
               const double lambda = mono ? o.single_wavelength_nm : band_lo[b] + band_width[b] * band_jitter;
-              acc[(pix * nb + b) * strata + st] += float(sample_path(
-                  scene, g, o.centre_um + glm::dvec2(p.x, p.y), st, lambda, u1, u2, counters ? &local : nullptr));
+              acc[pix * nb + b] += float(stratum_weight[st] * sample_path(scene, g, o.centre_um + glm::dvec2(p.x, p.y),
+                                                                          st, lambda, u1, u2, g.analyzer_in,
+                                                                          counters ? &local : nullptr));
             }
           }
         }
@@ -159,8 +201,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
       glm::dvec3 xyz(0.0);
       double mono_value = 0.0;
       for (int b = 0; b < nb; ++b) {
-        double v = 0.0;
-        for (int st = 0; st < strata; ++st) v += stratum_weight[st] * acc[(pix * nb + b) * strata + st] * inv_n;
+        double v = acc[pix * nb + b] * inv_n;
         v = background[b] > 0.0 ? v / background[b] : 0.0;
         if (mono)
           mono_value = v;
