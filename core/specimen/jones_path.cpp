@@ -29,6 +29,7 @@ double power(const CVec& v) { return std::norm(v.x) + std::norm(v.y) + std::norm
 
 struct Branch {
   glm::dvec3 origin{0.0}, dir{0.0};
+  glm::dvec3 surface{0.0};      // where the segment begins, on the surface (origin is nudged off it)
   int medium = kSpecimenAir;
   double n = 1.0;               // index of this wave (a crystal mode's n_k along dir)
   glm::dvec3 mode{0.0};         // crystal: the mode's vibration e_k; unused in isotropic media
@@ -36,6 +37,7 @@ struct Branch {
   CVec E[2];                    // fields per start vibration, without the bulk phase
   double phase_rad = 0.0;       // k0·Σ n·L (+ the exit term), unwrapped
   int events = 0;
+  double crystal_um = 0.0;      // geometric path inside crystals
 };
 
 // s = unit(d × N) (fresnel.h's frame), any unit ⟂ d at normal incidence.
@@ -54,28 +56,31 @@ struct Mode {
   FresnelAmplitudes f;
 };
 
-// Mode k (0 fast, 1 slow) refracted into crystal `c` (axes R) from a wave of index n_i along d:
-// Snell with the direction-dependent index, by fixed-point iteration (the index changes with the
-// angle by ≲ the birefringence, so each step shrinks the error by ~Δn·tanθ: 6 steps are exact to
-// double for any mineral).
-Mode refract_mode(const glm::dmat3& R, const glm::dvec3& n_xyz, int k, const glm::dvec3& d,
-                  const glm::dvec3& N_f, double cos_i, double n_i) {
+// Mode k (0 fast, 1 slow) refracted into a crystal (axes R) from a wave of index n_i along d:
+// Snell with the direction-dependent index n_k(t), by fixed-point iteration (each step shrinks the
+// error by ~Δn·tanθt: a few steps reach double precision except near grazing refraction, where
+// the last iterate is kept). The vibration is that of the section ⟂ the final direction, so it is
+// exactly transverse to it.
+Mode refract_mode(const glm::dmat3& R, const glm::dvec3& n_xyz, int k, const glm::dvec3& d, const glm::dvec3& N_f,
+                  double cos_i, double n_i) {
   Mode m;
   glm::dvec3 t = d;
-  for (int it = 0; it < 6; ++it) {
+  double n_prev = 0.0;
+  for (int it = 0; it < 12; ++it) {
     const SectionOptics so = section_optics(R, n_xyz, t);
     m.n = k == 0 ? so.n_fast : so.n_slow;
+    if (std::abs(m.n - n_prev) < 1e-15) break;
+    n_prev = m.n;
     const double eta = m.n / n_i;
     const double ct2 = snell_cos_t2(cos_i, eta);
     if (ct2 < 0.0) return m;  // evanescent (m.n: the index it would have)
     t = refract_dir(d, N_f, cos_i, std::sqrt(ct2), eta);
   }
-  const SectionOptics so = section_optics(R, n_xyz, t);
-  m.n = k == 0 ? so.n_fast : so.n_slow;
-  m.vib = k == 0 ? so.fast : so.slow;
   m.f = fresnel_amplitudes(cos_i, m.n / n_i);
   if (m.f.tir) return m;
   m.dir = refract_dir(d, N_f, cos_i, m.f.cos_t, m.f.eta);
+  const SectionOptics so = section_optics(R, n_xyz, m.dir);
+  m.vib = k == 0 ? so.fast : so.slow;
   m.ok = true;
   return m;
 }
@@ -103,12 +108,21 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
   Branch b0;
   b0.dir = glm::normalize(q.dir);
   b0.origin = q.origin;
+  b0.surface = q.origin;
   b0.medium = kSpecimenAir;
   b0.n = scene.index(kSpecimenAir, lambda, b0.dir);
-  glm::dvec3 a = q.start_vibration - glm::dot(q.start_vibration, b0.dir) * b0.dir;
-  a = glm::length(a) > 1e-12 ? glm::normalize(a) : s_axis(b0.dir, glm::dvec3(0, 0, 1));
-  b0.E[0] = real_vec(a);
-  b0.E[1] = real_vec(glm::cross(b0.dir, a));
+  glm::dvec3 a0 = q.start_vibration - glm::dot(q.start_vibration, b0.dir) * b0.dir;
+  a0 = glm::length(a0) > 1e-12 ? glm::normalize(a0) : s_axis(b0.dir, glm::dvec3(0, 0, 1));
+  b0.E[0] = real_vec(a0);
+  b0.E[1] = real_vec(glm::cross(b0.dir, a0));
+  // The lit branches, summed at the end with their mutual coherence.
+  struct Lit {
+    cd amp[2];
+    glm::dvec3 dir;
+  };
+  std::array<Lit, kMaxJonesLeaves> lit;
+  int n_lit = 0;
+  double crystal_um = 0.0;
   const glm::dvec3 x_start = q.origin;
 
   std::array<Branch, 2 * kMaxJonesLeaves> stack;
@@ -138,22 +152,30 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
           if (pl > 1e-12) {
             p /= pl;
             // The plane wave arriving along the branch: its phase at the exit point.
-            const double phase = b.phase_rad - k0 * b.n * glm::dot(b.dir, b.origin - x_start);
+            const double phase = b.phase_rad - k0 * b.n * glm::dot(b.dir, b.surface - x_start);
             const cd e = std::polar(1.0, phase);
-            for (int s = 0; s < starts; ++s) out.amplitude[s] += e * dot(p, b.E[s]);
+            if (n_lit < kMaxJonesLeaves) {
+              Lit& l = lit[std::size_t(n_lit++)];
+              for (int s = 0; s < starts; ++s) l.amp[s] = e * dot(p, b.E[s]);
+              l.dir = b.dir;
+              crystal_um = std::max(crystal_um, b.crystal_um);
+            }
           }
         }
         break;
       }
-      // Bulk: phase and pleochroic attenuation along the segment.
-      b.phase_rad += k0 * b.n * hit.t;
+      // Bulk: phase and pleochroic attenuation along the segment, measured from the surface it
+      // began on (not from the nudged origin: 1e-3 µm per face is 4e-3 rad of calcite's phase).
+      const double seg = glm::length(hit.point - b.surface);
+      b.phase_rad += k0 * b.n * seg;
+      if (b.crystal_mode) b.crystal_um += seg;
       if (b.crystal_mode) {
         const Crystal* c = scene.crystal_of(b.medium);
         if (c && c->absorbing()) {
           const glm::dvec3 mu = c->principal_absorption_per_um(lambda);
           const glm::dmat3 R = scene.orientation_of(b.medium);
           const double ex = glm::dot(b.mode, R[0]), ey = glm::dot(b.mode, R[1]), ez = glm::dot(b.mode, R[2]);
-          const double att = std::exp(-0.5 * (mu.x * ex * ex + mu.y * ey * ey + mu.z * ez * ez) * hit.t);
+          const double att = std::exp(-0.5 * (mu.x * ex * ex + mu.y * ey * ey + mu.z * ez * ez) * seg);
           for (int s = 0; s < starts; ++s) b.E[s] = cd(att) * b.E[s];
         }
       }
@@ -176,6 +198,7 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       const Crystal* to_crystal = scene.crystal_of(to);
       const Crystal* from_crystal = scene.crystal_of(from);
       const auto offset = [&](const glm::dvec3& dir) {
+        b.surface = hit.point;
         return hit.point + (glm::dot(dir, hit.normal) > 0.0 ? 1e-3 : -1e-3) * hit.normal;
       };
       // Reflection under TIR: mirror direction, r_s, r_p with their phases; inside a crystal the
@@ -240,31 +263,51 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       Branch m[2];
       bool ok[2];
       double n_max = 0.0;
+      Mode md[2];
       for (int k = 0; k < 2; ++k) {
-        const Mode md = refract_mode(R, n_xyz, k, d, N_f, cos_i, b.n);
-        ok[k] = md.ok;
-        n_max = std::max(n_max, md.n);
-        if (!md.ok) continue;
-        const glm::dvec3 p_t = glm::cross(md.dir, s);
-        const double cs = glm::dot(md.vib, s), cp = glm::dot(md.vib, p_t);
-        const glm::dvec3 a_k = cs * s + cp * p_i;  // e_k carried back to the incident frame
-        const double T = cs * cs * md.f.T_s() + cp * cp * md.f.T_p();
+        md[k] = refract_mode(R, n_xyz, k, d, N_f, cos_i, b.n);
+        ok[k] = md[k].ok;
+        n_max = std::max(n_max, md[k].n);
+      }
+      // Each mode's vibration carried back to the incident frame, a_k = (e_k·s)s + (e_k·p_t,k)p_i
+      // (unit: e_k ⟂ t_k). When the modes refract to different directions the two a_k are not
+      // quite orthogonal; the symmetric (Löwdin) orthonormalization S^(−1/2), the orthogonal pair
+      // nearest to them, makes the modes share the incident power exactly.
+      glm::dvec2 img[2];
+      for (int k = 0; k < 2; ++k)
+        if (ok[k]) {
+          const glm::dvec3 p_t = glm::cross(md[k].dir, s);
+          img[k] = glm::normalize(glm::dvec2(glm::dot(md[k].vib, s), glm::dot(md[k].vib, p_t)));
+        }
+      if (ok[0] && ok[1]) {
+        const double c = std::clamp(glm::dot(img[0], img[1]), -0.999999, 0.999999);
+        const double u = 1.0 / std::sqrt(1.0 + c), v = 1.0 / std::sqrt(1.0 - c);
+        const double al = 0.5 * (u + v), be = 0.5 * (u - v);
+        const glm::dvec2 o0 = al * img[0] + be * img[1], o1 = be * img[0] + al * img[1];
+        img[0] = o0;
+        img[1] = o1;
+      }
+      for (int k = 0; k < 2; ++k) {
+        if (!ok[k]) continue;
+        const double cs = img[k].x, cp = img[k].y;
+        const glm::dvec3 a_k = cs * s + cp * p_i;
+        const double T = cs * cs * md[k].f.T_s() + cp * cp * md[k].f.T_p();
         const double tau = std::sqrt(std::max(0.0, T));
         m[k] = b;
-        m[k].dir = md.dir;
-        m[k].n = md.n;
-        m[k].mode = md.vib;
+        m[k].dir = md[k].dir;
+        m[k].n = md[k].n;
+        m[k].mode = md[k].vib;
         m[k].crystal_mode = true;
         m[k].medium = to;
-        m[k].origin = offset(md.dir);
+        m[k].origin = offset(md[k].dir);
+        m[k].surface = hit.point;
         double inc = 0.0;
         for (int j = 0; j < starts; ++j) {
           const cd bk = dot(a_k, b.E[j]);
           inc += std::norm(bk);
-          m[k].E[j] = (tau * bk) * real_vec(md.vib);
+          m[k].E[j] = (tau * bk) * real_vec(md[k].vib);
         }
-        const double tr = field_power(m[k]);
-        count_event(counters, inc, (1.0 - T) * inc, tr, false);
+        count_event(counters, inc, (1.0 - T) * inc, field_power(m[k]), false);
       }
       if (!ok[0] && !ok[1]) {
         // Both modes evanescent: total reflection back into `from`, with the Fresnel phases of
@@ -288,6 +331,26 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       }
     }
   }
+  // Branches leaving in one direction come from one point of the condenser's (spatially
+  // incoherent) source and interfere: a plate's two waves. Branches leaving in different directions
+  // stand for different source points; their backward pairing is a stand-in for the true coherent
+  // partner (the ray from a nearby pupil point that leaves along the same direction), whose phase
+  // differs from this branch's by about k0·Δx·Δθ, with the branches' lateral separation Δx ≈ L·Δθ
+  // for a crystal path L. So the pair's coherence is γ = exp(−k0·L·|Δd|²): 1 for parallel faces,
+  // fringes kept at a wedge of small Δθ, incoherent (intensities added) for branches that leave by
+  // other faces. A Gaussian kernel of the directions: the sum stays a positive form.
+  for (int i = 0; i < n_lit; ++i)
+    for (int k = 0; k < starts; ++k) out.power[k] += std::norm(lit[std::size_t(i)].amp[k]);
+  for (int i = 0; i < n_lit; ++i)
+    for (int j = i + 1; j < n_lit; ++j) {
+      const Lit& li = lit[std::size_t(i)];
+      const Lit& lj = lit[std::size_t(j)];
+      const glm::dvec3 dd = li.dir - lj.dir;
+      const double gamma = std::exp(-k0 * crystal_um * glm::dot(dd, dd));
+      if (gamma < 1e-12) continue;
+      for (int k = 0; k < starts; ++k) out.power[k] += 2.0 * gamma * std::real(li.amp[k] * std::conj(lj.amp[k]));
+    }
+  for (int k = 0; k < starts; ++k) out.power[k] = std::max(0.0, out.power[k]);
   return out;
 }
 

@@ -29,7 +29,10 @@
 //  * Exit below the slide: each branch's field is projected on the polarizer (its vibration
 //    projected ⟂ the branch) with the phase of a plane wave arriving along the branch,
 //    −k0·n·(d·(x_exit − x_start)), which makes the branches' phase difference the one of a
-//    tilted plate (exact for parallel faces); branches are summed coherently.
+//    tilted plate (exact for parallel faces). Branches leaving in the same direction add
+//    coherently; those leaving in different directions with the coherence exp(−k0·L·|Δd|²)
+//    (jones_path.cpp: 1 for a plate, fringes at a shallow wedge, intensities added for branches
+//    that leave by other faces, which stand for other points of the incoherent source).
 // Branch tree: at most kMaxJonesLeaves leaves; past that a split keeps only the stronger mode and
 // the other's power is counted in InterfaceCounters::capped_power (a grain mount needs 2 leaves
 // for a fragment, 4 after one TIR inside it; 8 is never reached in the tests' scenes).
@@ -37,7 +40,6 @@
 // Reciprocity: for media without optical activity the backward Jones matrix is the transpose of
 // the forward one, so ⟨p|J_forward|a⟩ is the bilinear product p·(J_backward a): tracing backward
 // from the analyzer's vibration a gives the amplitude the polarizer's light reaches it with.
-#include <complex>
 
 #include <glm/vec3.hpp>
 
@@ -62,14 +64,13 @@ struct JonesPathRequest {
 };
 
 struct JonesPath {
-  std::complex<double> amplitude[2]{};  // ⟨p|J|a_i⟩ over the lit branches, per start vibration
+  // |⟨p|J|a_i⟩|² per start vibration, the lit branches summed with their mutual coherence.
+  double power[2]{};
   int leaves = 0;                       // branches that ended (lit or not)
   int lit = 0;                          // branches that left below inside the condenser's cone
   int interfaces = 0;                   // Fresnel events over all branches
   double intensity(int starts) const {
-    double s = std::norm(amplitude[0]);
-    if (starts > 1) s += std::norm(amplitude[1]);
-    return s;
+    return starts > 1 ? power[0] + power[1] : power[0];
   }
 };
 
