@@ -145,7 +145,14 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   const int w = o.width, h = o.height;
   const std::size_t npx = std::size_t(w) * h;
   std::vector<float> acc(npx * nb, 0.0f);  // per band, the strata already weighted
-  const int passes = std::max(1, (o.spp + nb * strata - 1) / (nb * strata));
+  // A pass traces at most kBandsPerPass bands, one of every G = nb / kBandsPerPass neighbours in
+  // turn (band b in the passes ≡ b mod G), so the first image costs what 8 bands cost: with the
+  // analyzer in its 32 bands take 4 passes, and until a band has been traced its value is its
+  // traced neighbour's.
+  constexpr int kBandsPerPass = 8;
+  const int G = std::max(1, nb / kBandsPerPass);
+  const int per_pass = (nb + G - 1) / G;
+  const int passes = std::max(G, ((o.spp + per_pass * strata - 1) / (per_pass * strata) + G - 1) / G * G);
   RenderImage img;
   img.width = w;
   img.height = h;
@@ -175,10 +182,10 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
             const glm::dvec3 p = rotate_z(f, g.c, g.s);
             // The band offset: this pass's van der Corput point, rotated by a per-pixel (not per
             // pass) random shift, so every prefix of passes covers each band evenly.
-            double band_jitter = van_der_corput(std::uint32_t(pass)) +
+            double band_jitter = van_der_corput(std::uint32_t(pass / G)) +
                                  SpecimenRandom(o.seed ^ splitmix64(pix * 4 + std::uint64_t(st) + 0x6a09e667ull)).uniform();
             band_jitter -= std::floor(band_jitter);
-            for (int b = 0; b < nb; ++b) {
+            for (int b = pass % G; b < nb; b += G) {
               const double lambda = mono ? o.single_wavelength_nm : band_lo[b] + band_width[b] * band_jitter;
               acc[pix * nb + b] += float(stratum_weight[st] * sample_path(scene, g, o.centre_um + glm::dvec2(p.x, p.y),
                                                                           st, lambda, u1, u2, g.analyzer_in,
@@ -196,13 +203,15 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
       return img;
     }
     // Develop: per band the stratified estimate over the empty field's, then XYZ and linear sRGB.
-    const double inv_n = 1.0 / (pass + 1);
     for (std::size_t pix = 0; pix < npx; ++pix) {
       glm::dvec3 xyz(0.0);
       double mono_value = 0.0;
       for (int b = 0; b < nb; ++b) {
-        double v = acc[pix * nb + b] * inv_n;
-        v = background[b] > 0.0 ? v / background[b] : 0.0;
+        // The band itself once traced, else the latest traced one of its group of G.
+        const int r = b % G, bt = r <= pass ? b : b - r + pass;
+        const int count = (pass - bt % G) / G + 1;
+        double v = acc[pix * nb + bt] / count;
+        v = background[bt] > 0.0 ? v / background[bt] : 0.0;
         if (mono)
           mono_value = v;
         else
@@ -221,7 +230,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
       }
     }
     img.passes = pass + 1;
-    img.samples_per_pixel = double((pass + 1) * nb * strata);
+    img.samples_per_pixel = double((pass + 1) * per_pass * strata);
     img.converged = pass + 1 == passes;
     img.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (progress) progress(img);

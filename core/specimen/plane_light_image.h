@@ -31,7 +31,8 @@
 // analyzer in, interference colours vary with λ as sin²(πΓ/λ): a band must be narrow against the
 // period λ²/Γ of that oscillation where the eye still sees colour (Γ ≲ 2000 nm: λ²/Γ ≳ 120 nm
 // at 500 nm; beyond that the colours fade to the high-order white, which any band width averages
-// correctly), so at least kCrossedPolarBands bands (12.5 nm) are used.
+// correctly), so at least kCrossedPolarBands bands (12.5 nm) are used. A pass traces 8 of them
+// (every fourth in turn), so the first image costs what a plane-light pass costs.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -78,7 +79,7 @@ struct PlaneLightOptions {
   std::uint64_t seed = 1;
 };
 
-// Renders pass by pass (each pass one inner and one annulus sample per band and pixel);
+// Renders pass by pass (each pass one inner and one annulus sample per pixel for up to 8 bands);
 // `progress` sees the image after each pass. `counters` (optional) sums every Fresnel event.
 // `cancel` (optional, polled every pixel row): once raised, the pass in flight is abandoned and
 // the last finished pass's image is returned (converged = false), so an interactive client can
