@@ -1,6 +1,5 @@
 #include "core/bench/grain_mount_bench.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -11,12 +10,15 @@
 
 namespace pmsim {
 
-namespace {
-
-// Rows for one grain-mount scene: the reference's half-sample image, the first pass, `test_spp` samples.
-std::vector<BenchRow> grain_mount_rows(const Scene& scene, const std::string& name, const std::string& prefix,
-                                       int ref_spp, int test_spp, std::ostream& log) {
-  const int size = scene.render.width;
+std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
+  Scene scene;
+  scene.sample.type = SampleType::Grains;
+  scene.sample.mineral = "garnet";
+  scene.sample.medium_index = 1.54;
+  scene.focus_um = 5.0;
+  scene.analyzer_in = false;  // plane light (a default Scene has the analyzer in)
+  scene.render.width = scene.render.height = size;
+  const std::string name = "grain-mount-garnet-1.54";
   log << "scene " << name << ": specimen… " << std::flush;
   const auto t0 = std::chrono::steady_clock::now();
   const auto specimen = grain_mount_specimen(scene);
@@ -24,13 +26,13 @@ std::vector<BenchRow> grain_mount_rows(const Scene& scene, const std::string& na
   log << specimen->fragment_count() << " fragments, " << build_ms << " ms; reference… " << std::flush;
 
   PlaneLightOptions ref_opt = plane_light_options(scene);
-  ref_opt.spp = ref_spp;
+  ref_opt.spp = 256;
   ref_opt.seed = 2;
   std::vector<float> half_xyz;
   double half_ms = 0.0, half_cpu_ms = 0.0;
   const double ref_cpu0 = process_cpu_ms();
   const RenderImage ref = render_plane_light(*specimen, ref_opt, [&](const RenderImage& img) {
-    if (half_xyz.empty() && img.samples_per_pixel >= ref_spp / 2) half_xyz = img.xyz, half_ms = img.time_ms, half_cpu_ms = process_cpu_ms() - ref_cpu0;
+    if (img.samples_per_pixel == 128) half_xyz = img.xyz, half_ms = img.time_ms, half_cpu_ms = process_cpu_ms() - ref_cpu0;
   });
   log << ref.time_ms << " ms\n";
   const glm::dvec3 white = illuminant_white_xyz(scene.illuminant);
@@ -55,10 +57,9 @@ std::vector<BenchRow> grain_mount_rows(const Scene& scene, const std::string& na
     log << "  " << strategy << ": " << time_ms << " ms, mean ΔE00 " << e.mean_de2000 << "\n";
     rows.push_back(row);
   };
-  add(prefix + "-reference-half", half_xyz, half_ms, half_cpu_ms, ref_spp / 2, "bench-side",
-      "the reference at half its samples");
+  add("plane-light-reference-half", half_xyz, half_ms, half_cpu_ms, 128, "bench-side", "the reference at half its samples");
   PlaneLightOptions opt = plane_light_options(scene);
-  opt.spp = test_spp;
+  opt.spp = 64;
   RenderImage first;
   double first_cpu_ms = 0.0;
   const double cpu0 = process_cpu_ms();
@@ -66,35 +67,11 @@ std::vector<BenchRow> grain_mount_rows(const Scene& scene, const std::string& na
     if (img.passes == 1) first = img, first_cpu_ms = process_cpu_ms() - cpu0;
   });
   const double done_cpu_ms = process_cpu_ms() - cpu0;
-  add(prefix + "-first-pass", first.xyz, first.time_ms, first_cpu_ms, int(first.samples_per_pixel), "product",
+  add("plane-light-first-pass", first.xyz, first.time_ms, first_cpu_ms, int(first.samples_per_pixel), "product",
       done.model_report);
-  add(prefix + "-" + std::to_string(test_spp) + "spp", done.xyz, done.time_ms, done_cpu_ms, int(done.samples_per_pixel),
-      "product", done.model_report);
+  add("plane-light-64spp", done.xyz, done.time_ms, done_cpu_ms, int(done.samples_per_pixel), "product",
+      done.model_report);
   return rows;
-}
-
-}  // namespace
-
-std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
-  Scene scene;
-  scene.sample.type = SampleType::Grains;
-  scene.sample.mineral = "garnet";
-  scene.sample.medium_index = 1.54;
-  scene.focus_um = 5.0;
-  scene.analyzer_in = false;  // plane light
-  scene.render.width = scene.render.height = size;
-  return grain_mount_rows(scene, "grain-mount-garnet-1.54", "plane-light", 256, 64, log);
-}
-
-std::vector<BenchRow> crossed_polar_grain_mount_bench_rows(int size, std::ostream& log) {
-  Scene scene;
-  scene.sample.type = SampleType::Grains;
-  scene.sample.mineral = "calcite";
-  scene.sample.medium_index = 1.54;
-  scene.analyzer_in = true;  // crossed polars (polarizer 0°, analyzer 90°)
-  scene.render.width = scene.render.height = std::min(size, 256);
-  // 64 samples a pixel is one pass of 32 bands × 2 pupil strata; the reference has 16 passes.
-  return grain_mount_rows(scene, "grain-mount-calcite-crossed", "crossed-polars", 1024, 64, log);
 }
 
 }  // namespace pmsim

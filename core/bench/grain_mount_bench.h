@@ -11,8 +11,5 @@
 namespace pmsim {
 
 std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log);
-// Crossed polars on a calcite grain mount in 1.54 (the polarization-exact tracer, 32 bands), at
-// min(size, 256)²: first pass and 64 samples a pixel against a 1024-sample reference (another seed).
-std::vector<BenchRow> crossed_polar_grain_mount_bench_rows(int size, std::ostream& log);
 
 }  // namespace pmsim

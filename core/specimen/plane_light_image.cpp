@@ -91,15 +91,20 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   const bool analyzer_in = o.analyzer_in && !o.scalar_tracer;
   const int nb = mono ? 1 : std::max(analyzer_in ? kCrossedPolarBands : 1, o.bands);
   // Band weights W_b = ∫_band w(λ) dλ with w the observer × illuminant weight (Y = 1 for T ≡ 1),
-  // by the midpoint rule at 1 nm.
+  // by the midpoint rule at ≤ 1 nm steps that tile the band exactly (a band of 12.5 nm is 13 steps
+  // of 0.96 nm: 1 nm steps from its start would cover 12 of its 12.5 nm, and the bands' weights
+  // would sum to Y = 0.96).
   std::vector<glm::dvec3> W(nb, glm::dvec3(0.0));
   std::vector<double> band_lo(nb), band_width(nb);
   const double span = kVisibleMaxNm - kVisibleMinNm;
   for (int b = 0; b < nb; ++b) {
     band_lo[b] = kVisibleMinNm + span * b / nb;
     band_width[b] = span / nb;
-    if (!mono)
-      for (double l = band_lo[b] + 0.5; l < band_lo[b] + band_width[b]; l += 1.0) W[b] += observer_weight(o.illuminant, l);
+    if (!mono) {
+      const int steps = int(std::ceil(band_width[b] - 1e-9));
+      const double dl = band_width[b] / steps;
+      for (int k = 0; k < steps; ++k) W[b] += dl * observer_weight(o.illuminant, band_lo[b] + (k + 0.5) * dl);
+    }
   }
   const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
 
