@@ -168,8 +168,8 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       // began on (not from the nudged origin: 1e-3 µm per face is 4e-3 rad of calcite's phase).
       const double seg = glm::length(hit.point - b.surface);
       b.phase_rad += k0 * b.n * seg;
-      if (b.crystal_mode) b.crystal_um += seg;
       if (b.crystal_mode) {
+        b.crystal_um += seg;
         const Crystal* c = scene.crystal_of(b.medium);
         if (c && c->absorbing()) {
           const glm::dvec3 mu = c->principal_absorption_per_um(lambda);
