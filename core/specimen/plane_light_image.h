@@ -39,6 +39,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "core/base/units.h"
 #include "core/render/render_image.h"
 #include "core/spectrum/illuminant.h"
 #include "core/specimen/specimen_scene.h"
@@ -68,7 +69,7 @@ struct PlaneLightOptions {
   double condenser_aperture_na = 0.0;  // 0: kStoppedDownApertureNa
   double polarizer_rad = 0.0;       // vibration direction of the polarizer, from +x
   bool analyzer_in = false;         // crossed (or any) polars: the analyzer's vibration is traced
-  double analyzer_rad = 1.5707963267948966;  // the analyzer's vibration direction, from +x (π/2: N–S)
+  double analyzer_rad = kPi / 2;    // the analyzer's vibration direction, from +x (π/2: N–S)
   // Plane light with the one-vibration tracer of specimen_tracer.h instead of the polarization-
   // exact one (analyzer out only): kept to compare the two in tests.
   bool scalar_tracer = false;
