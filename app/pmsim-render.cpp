@@ -209,10 +209,8 @@ int main(int argc, char** argv) {
           for (const std::string& w : f->warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       const bool tty = ::isatty(STDERR_FILENO);
       const auto bar = tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr;
-      // A grain mount is a refracting 3-D specimen (core/specimen), traced in plane light.
+      // A grain mount is a refracting 3-D specimen (core/specimen), traced with its polarization.
       const bool grains = scene.sample_in && scene.sample.type == pmsim::SampleType::Grains;
-      if (grains && scene.analyzer_in)
-        std::cerr << "pmsim-render: note: a grain mount is rendered in plane-polarized light (analyzer out)\n";
       pmsim::RenderImage img =
           grains ? pmsim::render_grain_mount(scene, bar) : pmsim::ProgressiveRenderer::render(scene, 0, bar);
       if (tty) std::fprintf(stderr, "\n");

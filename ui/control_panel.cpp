@@ -208,7 +208,8 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
 
   if (s.type == SampleType::Grains) {
     // A grain mount: fragments of sample.mineral in an immersion liquid of n_D sample.medium_index,
-    // rendered in plane-polarized light (the analyzer is ignored) by core/specimen.
+    // traced with its polarization by core/specimen: plane light with the analyzer out,
+    // interference colours with it in.
     if (mineral_combo(s.mineral)) {
       s.crystal.reset();
       changed = true;
@@ -219,7 +220,8 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
       changed = true;
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("sample.medium_index: n_D of the immersion liquid");
-    ImGui::TextDisabled("plane light; focus and aperture in the Microscope tab");
+    ImGui::TextDisabled(edit.analyzer_in ? "analyzer in: interference colours; focus and aperture in the Microscope tab"
+                                         : "plane light; focus and aperture in the Microscope tab");
     return;
   }
 

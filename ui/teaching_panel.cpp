@@ -270,6 +270,7 @@ void App::draw_teaching() {
     ImGui::Text("Liquid n_D    %.4f", b.liquid_n);
     ImGui::Text("Focus         %+.1f um", scene_.focus_um);
     ImGui::TextWrapped("Becke line: %s", describe_becke_line(b).c_str());
+    if (scene_.analyzer_in) ImGui::TextWrapped("%s", describe_crossed_polars(b).c_str());
   } else if (!p.lit) {
     ImGui::TextDisabled("no light reaches this point");
   } else {

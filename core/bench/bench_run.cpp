@@ -12,6 +12,7 @@
 
 #include "core/bench/bench_scenes.h"
 #include "core/bench/bench_strategy.h"
+#include "core/bench/crossed_polar_grain_bench.h"
 #include "core/bench/grain_mount_bench.h"
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
@@ -123,6 +124,10 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
       std::string("plane-light-reference plane-light-preview plane-light-first-pass plane-light-64spp plane-light-256spp-or-tolerance-1").find(opt.strategy_filter) !=
           std::string::npos)
     for (BenchRow& row : grain_mount_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
+  if (std::string("grain-mount-calcite-crossed").find(opt.scene_filter) != std::string::npos &&
+      std::string("crossed-polars-reference-half crossed-polars-first-pass crossed-polars-64spp")
+              .find(opt.strategy_filter) != std::string::npos)
+    for (BenchRow& row : crossed_polar_grain_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

@@ -16,6 +16,7 @@ std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
   scene.sample.mineral = "garnet";
   scene.sample.medium_index = 1.54;
   scene.focus_um = 5.0;
+  scene.analyzer_in = false;  // plane light (a default Scene has the analyzer in)
   scene.render.width = scene.render.height = size;
   const std::string name = "grain-mount-garnet-1.54";
   log << "scene " << name << ": specimen… " << std::flush;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/base/units.h"
+#include "core/crystal/section_optics.h"
 #include "core/specimen/grain_mount_render.h"
 
 namespace pmsim {
@@ -37,6 +38,15 @@ BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, d
     r.fragment = 0;
   }
   r.mineral_n = specimen.index(kFirstFragment + r.fragment, kLambdaD_nm, vibration);
+  const int medium = kFirstFragment + r.fragment;
+  if (const Crystal* crystal = specimen.crystal_of(medium)) {
+    const SectionOptics so =
+        section_optics(specimen.orientation_of(medium), crystal->principal_indices(kLambdaD_nm), {0.0, 0.0, 1.0});
+    r.n_fast = so.n_fast;
+    r.n_slow = so.n_slow;
+  } else {
+    r.n_fast = r.n_slow = r.mineral_n;
+  }
   const double d = r.mineral_n - r.liquid_n;
   r.moves_into_mineral = std::abs(d) < kMatch ? 0 : (d > 0 ? 1 : -1);
   return r;
@@ -59,6 +69,22 @@ std::string describe_becke_line(const BeckeProbe& p) {
                   "n' %.4f < liquid %.4f: focusing up (focus +), the bright Becke line moves out into the "
                   "liquid; focusing down it moves into the grain.",
                   p.mineral_n, p.liquid_n);
+  return buf;
+}
+
+std::string describe_crossed_polars(const BeckeProbe& p) {
+  char buf[320];
+  if (p.n_slow - p.n_fast < 1e-6)
+    std::snprintf(buf, sizeof buf,
+                  "Crossed polars: n' %.4f for every vibration (isotropic here): the grain stays dark at every "
+                  "stage angle; only its outline and the light it bends show.",
+                  p.n_fast);
+  else
+    std::snprintf(buf, sizeof buf,
+                  "Crossed polars: the light splits into two waves vibrating along n'a %.4f and n'g %.4f; their "
+                  "path difference (n'g - n'a) x thickness = %.1f nm per um sets the colour, thicker at the "
+                  "centre, thinning to first-order fringes at the edge; dark when a vibration is along a polar.",
+                  p.n_fast, p.n_slow, 1000.0 * (p.n_slow - p.n_fast));
   return buf;
 }
 

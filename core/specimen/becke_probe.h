@@ -20,6 +20,10 @@ struct BeckeProbe {
   // +1: the line moves into the mineral on focusing up (n' > n_D of the liquid); −1: into the
   // liquid; 0: matched within 0.001 (the outline nearly vanishes, dispersion colours remain).
   int moves_into_mineral = 0;
+  // The fragment's two vibration directions for vertical light (the central section of its
+  // indicatrix ⟂ the microscope axis): their indices n'α ≤ n'γ at 589.26 nm (equal for an
+  // isotropic mineral), what sets its interference colour between crossed polars.
+  double n_fast = 0.0, n_slow = 0.0;
 };
 
 // `x`, `y`: fractions of the image from its top left (as the app's probe). The mount is `specimen`
@@ -27,5 +31,7 @@ struct BeckeProbe {
 BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, double x, double y);
 // One line for the teaching panel: what the student sees when focusing up here.
 std::string describe_becke_line(const BeckeProbe& probe);
+// One line for the teaching panel with the analyzer in: where the fragment's colour comes from.
+std::string describe_crossed_polars(const BeckeProbe& probe);
 
 }  // namespace pmsim

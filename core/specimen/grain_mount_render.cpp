@@ -53,6 +53,8 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
   o.objective_na = scene.objective.na;
   o.condenser_aperture_na = scene.condenser.aperture_na;
   o.polarizer_rad = radians(scene.polarizer_deg);
+  o.analyzer_in = scene.analyzer_in;
+  o.analyzer_rad = radians(scene.analyzer_deg);
   o.illuminant = scene.illuminant;
   o.single_wavelength_nm = scene.render.single_wavelength_nm;
   // Like every image: stop at render.tolerance (split-half estimate), or at render.spp if set.

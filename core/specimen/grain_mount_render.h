@@ -1,5 +1,6 @@
 #pragma once
-// A microscope scene with sample.type = grains rendered in plane-polarized light: fragments of
+// A microscope scene with sample.type = grains rendered in plane-polarized light (analyzer out) or
+// between polars (analyzer in, at analyzer_deg: interference colours): fragments of
 // sample.mineral (or sample.crystal) scattered over the slide in the liquid of n_D
 // sample.medium_index, seen through the scene's objective at focus_um with the condenser's
 // aperture diaphragm condenser.aperture_na (core/specimen/plane_light_image.h).
@@ -27,7 +28,7 @@ std::vector<glm::dvec3> good_cleavage_normals(const std::string& mineral);
 // The mount on the slide: a fixed 4 mm × 4 mm spread of fragments (the same slide whatever the
 // mineral or liquid; the stage moves and turns it), in the liquid the scene names.
 std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene);
-// The view: field of view, stage, focus, apertures, polarizer, illuminant and samples of `scene`
+// The view: field of view, stage, focus, apertures, polarizer, analyzer, illuminant and samples of `scene`
 // (render.spp; 0: 64 samples a pixel).
 PlaneLightOptions plane_light_options(const Scene& scene);
 // `cancel` (optional): as render_plane_light's — the interactive app leaves a scene with it.

@@ -30,30 +30,48 @@ struct Geometry {
   bool annulus;
   double z_air, z_start;
   glm::dvec3 vibration;  // polarizer direction in the specimen frame
+  glm::dvec3 analyzer;   // analyzer direction in the specimen frame
+  bool analyzer_in = false, scalar = false;
   double c, s;           // cos, sin of −stage
 };
 
 glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) { return {c * v.x - s * v.y, s * v.x + c * v.y, v.z}; }
 
-// One sample: stratum 0 = inner disk, 1 = annulus; returns the light the ray finds (0 or T).
+// One sample: stratum 0 = inner disk, 1 = annulus; returns the light the ray finds (0 if it
+// leaves outside the condenser's cone). `analyzer_in` false: the analyzer out whatever g says
+// (the exposure of the empty field).
 double sample_path(const SpecimenScene& scene, const Geometry& g, const glm::dvec2& point_um, int stratum,
-                   double wavelength_nm, double u1, double u2, InterfaceCounters* counters) {
+                   double wavelength_nm, double u1, double u2, bool analyzer_in, InterfaceCounters* counters) {
   const double sin_t = stratum == 0 ? g.r_in * std::sqrt(u1)
                                     : std::sqrt(g.r_in * g.r_in + (g.na * g.na - g.r_in * g.r_in) * u1);
   const double phi = 2.0 * kPi * u2;
   const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t));
   const glm::dvec3 d = rotate_z({sin_t * std::cos(phi), sin_t * std::sin(phi), -cos_t}, g.c, g.s);
   const glm::dvec3 focus{point_um, g.z_air};
-  PolarizedRay ray;
-  ray.dir = d;
-  ray.origin = focus + ((g.z_start - g.z_air) / d.z) * d;
-  ray.wavelength_nm = wavelength_nm;
-  ray.intensity = 1.0;
-  ray.pol = g.vibration;
-  const SpecimenPath p = trace_specimen(scene, ray, counters);
-  if (!p.left_below) return 0.0;
-  const double sin_exit = std::sqrt(p.exit_dir.x * p.exit_dir.x + p.exit_dir.y * p.exit_dir.y);
-  return sin_exit <= g.nac ? p.throughput : 0.0;
+  const glm::dvec3 origin = focus + ((g.z_start - g.z_air) / d.z) * d;
+  if (g.scalar) {
+    PolarizedRay ray;
+    ray.dir = d;
+    ray.origin = origin;
+    ray.wavelength_nm = wavelength_nm;
+    ray.intensity = 1.0;
+    ray.pol = g.vibration;
+    const SpecimenPath p = trace_specimen(scene, ray, counters);
+    if (!p.left_below) return 0.0;
+    const double sin_exit = std::sqrt(p.exit_dir.x * p.exit_dir.x + p.exit_dir.y * p.exit_dir.y);
+    return sin_exit <= g.nac ? p.throughput : 0.0;
+  }
+  JonesPathRequest q;
+  q.origin = origin;
+  q.dir = d;
+  q.wavelength_nm = wavelength_nm;
+  q.starts = analyzer_in ? 1 : 2;
+  q.start_vibration = analyzer_in ? g.analyzer : g.vibration;
+  q.polarizer = g.vibration;
+  q.condenser_sin_max = g.nac;
+  const JonesPath p = trace_specimen_jones(scene, q, counters);
+  const double I = p.intensity(q.starts);
+  return std::isfinite(I) ? I : 0.0;
 }
 
 
@@ -169,9 +187,17 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   };
   const bool mono = o.single_wavelength_nm > 0.0;
-  const int nb = mono ? 1 : std::max(1, o.bands);
+  const bool analyzer_in = o.analyzer_in && !o.scalar_tracer;
+  const int nb = mono ? 1 : std::max(analyzer_in ? kCrossedPolarBands : 1, o.bands);
+  // Bands traced a pass besides the reference: one in plane light (the control variate's
+  // difference is small there), 8 with the analyzer in (the colour oscillates across the bands),
+  // one of every G neighbours in turn.
+  const int bands_per_pass = mono ? 1 : std::min(nb, analyzer_in ? 8 : 1);
+  const int G = std::max(1, nb / bands_per_pass);
   // Band weights W_b = ∫_band w(λ) dλ with w the observer × illuminant weight (Y = 1 for T ≡ 1),
-  // by the midpoint rule at 1 nm.
+  // by the midpoint rule at ≤ 1 nm steps that tile the band exactly (a band of 12.5 nm is 13 steps
+  // of 0.96 nm: 1 nm steps from its start would cover 12 of its 12.5 nm, and the bands' weights
+  // would sum to Y = 0.96).
   std::vector<glm::dvec3> W(nb, glm::dvec3(0.0));
   std::vector<double> band_lo(nb), band_width(nb);
   const double span = kVisibleMaxNm - kVisibleMinNm;
@@ -179,8 +205,11 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   for (int b = 0; b < nb; ++b) {
     band_lo[b] = kVisibleMinNm + span * b / nb;
     band_width[b] = span / nb;
-    if (!mono)
-      for (double l = band_lo[b] + 0.5; l < band_lo[b] + band_width[b]; l += 1.0) W[b] += observer_weight(o.illuminant, l);
+    if (!mono) {
+      const int steps = int(std::ceil(band_width[b] - 1e-9));
+      const double dl = band_width[b] / steps;
+      for (int k = 0; k < steps; ++k) W[b] += dl * observer_weight(o.illuminant, band_lo[b] + (k + 0.5) * dl);
+    }
     w_sum += W[b];
   }
   const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
@@ -200,17 +229,22 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   g.c = std::cos(-o.stage_rad);
   g.s = std::sin(-o.stage_rad);
   g.vibration = rotate_z({std::cos(o.polarizer_rad), std::sin(o.polarizer_rad), 0.0}, g.c, g.s);
+  g.analyzer = rotate_z({std::cos(o.analyzer_rad), std::sin(o.analyzer_rad), 0.0}, g.c, g.s);
+  g.analyzer_in = analyzer_in;
+  g.scalar = o.scalar_tracer;
   const int strata = g.annulus ? 2 : 1;
   const double stratum_weight[2] = {g.annulus ? g.a_in : 1.0, 1.0 - g.a_in};
 
   // Exposure: the same stack without fragments, at the same λ and strata. Its paths cross plane
   // faces only, so T is a smooth function of the pupil point and λ: a midpoint rule (16 radii ×
   // 4 azimuths × 2 λ a band) is exact far below any visible difference.
-  std::vector<double> background(nb, 0.0);
-  double background_ref = 0.0;
+  // With the analyzer in, the empty field between the polars (about 0 when crossed: what the
+  // plane faces' Fresnel terms turn of the vibration) is what a pixel far from every fragment shows.
+  std::vector<double> background(nb, 0.0), empty_polars(nb, 0.0);
+  double background_ref = 0.0, empty_polars_ref = 0.0;
   {
     const SpecimenScene empty({}, scene.mineral(), scene.liquid(), scene.glass(), scene.air(), L);
-    const auto empty_field = [&](double lo, double width, int n_lambda) {
+    const auto empty_field = [&](double lo, double width, int n_lambda, bool with_analyzer) {
       constexpr int kRadii = 16, kAzimuths = 4;
       double v = 0.0;
       for (int st = 0; st < strata; ++st) {
@@ -219,14 +253,24 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
           for (int i = 0; i < kRadii; ++i)
             for (int j = 0; j < kAzimuths; ++j)
               sum += sample_path(empty, g, {0.0, 0.0}, st, lo + width * (il + 0.5) / n_lambda, (i + 0.5) / kRadii,
-                                 (j + 0.5) / kAzimuths, nullptr);
+                                 (j + 0.5) / kAzimuths, with_analyzer, nullptr);
         v += stratum_weight[st] * sum / (n_lambda * kRadii * kAzimuths);
       }
       return v;
     };
-    for (int b = 0; b < nb; ++b)
-      background[b] = mono ? empty_field(o.single_wavelength_nm, 0.0, 1) : empty_field(band_lo[b], band_width[b], 2);
-    background_ref = mono ? background[0] : empty_field(lambda_ref, 0.0, 1);
+    for (const bool with_analyzer : {false, true}) {
+      if (with_analyzer && !analyzer_in) break;
+      std::vector<double>& field = with_analyzer ? empty_polars : background;
+      for (int b = 0; b < nb; ++b)
+        field[b] = mono ? empty_field(o.single_wavelength_nm, 0.0, 1, with_analyzer)
+                        : empty_field(band_lo[b], band_width[b], 2, with_analyzer);
+      (with_analyzer ? empty_polars_ref : background_ref) =
+          mono ? field[0] : empty_field(lambda_ref, 0.0, 1, with_analyzer);
+    }
+    if (!analyzer_in) {
+      empty_polars = background;
+      empty_polars_ref = background_ref;
+    }
   }
 
   const int w = o.width, h = o.height;
@@ -234,8 +278,18 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   const glm::dvec2 centre = o.centre_um;
   const double reach = mono ? cone_reach_um(scene, g.na, g.z_air, o.single_wavelength_nm, o.single_wavelength_nm)
                             : cone_reach_um(scene, g.na, g.z_air, kVisibleMinNm, kVisibleMaxNm);
-  const glm::dvec3 empty_xyz = mono ? white : w_sum;
-  const glm::dvec3 empty_rgb = mono ? glm::dvec3(1.0) : xyz_to_linear_srgb(w_sum);
+  // The empty field's colour: 1 in plane light (the exposure), the polars' own value with the
+  // analyzer in.
+  glm::dvec3 empty_xyz(0.0);
+  for (int b = 0; b < nb; ++b) {
+    const double v = background[b] > 0.0 ? empty_polars[b] / background[b] : 0.0;
+    empty_xyz += mono ? v * white : v * W[b];
+  }
+  const glm::dvec3 empty_rgb = mono ? glm::dvec3(empty_xyz.y / white.y) : xyz_to_linear_srgb(empty_xyz);
+  const double empty_ref = background_ref > 0.0 ? empty_polars_ref / background_ref : 0.0;
+  // The grey preview's white: the empty field with the analyzer out.
+  const glm::dvec3 open_xyz = mono ? white : w_sum;
+  const glm::dvec3 open_rgb = mono ? glm::dvec3(1.0) : xyz_to_linear_srgb(w_sum);
 
   RenderImage img;
   img.width = w;
@@ -243,7 +297,12 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   img.rgb.assign(npx * 3, 0.0f);
   img.xyz.assign(npx * 3, 0.0f);
   img.wavelengths = nb;
-  img.model_report = "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized light";
+  img.model_report = o.scalar_tracer ? "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized "
+                                       "light, one linear vibration"
+                     : analyzer_in ? "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                                     "splitting, coherent sum), analyzer in"
+                                   : "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                                     "splitting), plane-polarized light";
   std::mutex counter_mutex;
   const auto point_of = [&](int px, int py, double jx, double jy, double um_per_px, int ww, int hh) {
     const glm::dvec3 f{(px + jx - 0.5 * ww) * um_per_px, (0.5 * hh - (py + jy)) * um_per_px, 0.0};
@@ -257,7 +316,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
     const double cum = o.um_per_px * double(w) / cw;
     const auto cnear = pixels_near_fragments(scene, cw, ch, cum, centre, g.c, g.s, reach);
-    std::vector<float> coarse(std::size_t(cw) * ch, 1.0f);
+    std::vector<float> coarse(std::size_t(cw) * ch, float(empty_ref));
     tbb::parallel_for(tbb::blocked_range<int>(0, ch), [&](const tbb::blocked_range<int>& rows) {
       for (int py = rows.begin(); py < rows.end() && !cancelled(); ++py)
         for (int px = 0; px < cw; ++px) {
@@ -266,7 +325,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
           const SampleDims d = kronecker(pixel_shift(o.seed ^ 0x5eedull, pix, 0), 0);
           coarse[pix] = float(stratum_weight[0] *
                               sample_path(scene, g, point_of(px, py, d.v[0], d.v[1], cum, cw, ch), 0, lambda_ref,
-                                          d.v[2], d.v[3], nullptr) /
+                                          d.v[2], d.v[3], g.analyzer_in, nullptr) /
                               background_ref);
         }
     });
@@ -286,7 +345,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
           const auto at = [&](int xx, int yy) { return double(coarse[std::size_t(yy) * cw + xx]); };
           const double v = (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
           const std::size_t pix = std::size_t(y) * w + x;
-          const glm::dvec3 xyz = v * empty_xyz, rgb = v * empty_rgb;
+          const glm::dvec3 xyz = v * open_xyz, rgb = v * open_rgb;
           for (int c = 0; c < 3; ++c) img.xyz[pix * 3 + c] = float(xyz[c]), img.rgb[pix * 3 + c] = float(rgb[c]);
         }
       }
@@ -298,21 +357,23 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     if (progress) progress(img);
   }
 
-  // The pixels that can see a fragment; every other one is the empty field, 1, from the start.
+  // The pixels that can see a fragment; every other one is the empty field (1 in plane light) from
+  // the start.
   const auto near = pixels_near_fragments(scene, w, h, o.um_per_px, centre, g.c, g.s, reach);
   std::vector<std::uint32_t> active;
   for (std::size_t pix = 0; pix < npx; ++pix)
     if (near[pix]) active.push_back(std::uint32_t(pix));
   const std::size_t na = active.size();
-  const int traces = mono ? 1 : 2;
+  const int traces = mono ? 1 : 1 + bands_per_pass;
   // Accumulators per half (even/odd passes), per active pixel: Σ T(λ_ref) per stratum, and per
-  // band and stratum Σ (T(λ_b) − T(λ_ref)) over the passes that traced band b.
+  // band and stratum Σ (T(λ_b) − T(λ_ref)) over the passes that traced band b (pass j traces the
+  // bands b ≡ j + offset mod G).
   std::vector<double> ref_acc[2] = {std::vector<double>(na * strata, 0.0), std::vector<double>(na * strata, 0.0)};
   std::vector<float> diff_acc[2];
   if (!mono)
     for (auto& d : diff_acc) d.assign(na * nb * strata, 0.0f);
   std::vector<int> band_offset(na);
-  for (std::size_t a = 0; a < na; ++a) band_offset[a] = int(splitmix64(o.seed ^ (active[a] * 0x2545f4914f6cdd1dull)) % nb);
+  for (std::size_t a = 0; a < na; ++a) band_offset[a] = int(splitmix64(o.seed ^ (active[a] * 0x2545f4914f6cdd1dull)) % G);
 
   // One half's (h = 0, 1) or both halves' (h = 2) colour of active pixel a after `passes` passes.
   const auto develop = [&](std::size_t a, int passes, int half) {
@@ -325,7 +386,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     for (int b = 0; b < nb; ++b) {
       int n_b = 0;
       if (!mono)
-        for (int hh = h0; hh <= h1; ++hh) n_b += band_count(m[hh], band_offset[a], b, nb);
+        for (int hh = h0; hh <= h1; ++hh) n_b += band_count(m[hh], band_offset[a], b % G, G);
       double v = 0.0;
       for (int st = 0; st < strata; ++st) {
         double ref = 0.0, diff = 0.0;
@@ -344,7 +405,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   const int spp_per_pass = strata * traces;
   const int passes = std::max(1, (o.spp + spp_per_pass - 1) / spp_per_pass);
   // A split-half estimate means something once each half has traced every band.
-  const int min_passes_for_estimate = mono ? 2 : 2 * nb;
+  const int min_passes_for_estimate = mono ? 2 : 2 * G;
   std::optional<double> last_err;
   for (int pass = 0; pass < passes; ++pass) {
     const int half = pass % 2, j = pass / 2;
@@ -355,16 +416,18 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         if ((a & 63) == 0 && cancelled()) break;
         const std::size_t pix = active[a];
         const int px = int(pix % std::size_t(w)), py = int(pix / std::size_t(w));
-        const int b = (j + band_offset[a]) % nb;
+        const int group = (j + band_offset[a]) % G;
         for (int st = 0; st < strata; ++st) {
           const SampleDims d = kronecker(pixel_shift(o.seed, pix, st), pass);
           const glm::dvec2 p = point_of(px, py, d.v[0], d.v[1], o.um_per_px, w, h);
-          const double t_ref = sample_path(scene, g, p, st, lambda_ref, d.v[2], d.v[3], lc);
+          const double t_ref = sample_path(scene, g, p, st, lambda_ref, d.v[2], d.v[3], g.analyzer_in, lc);
           ref_acc[half][a * strata + st] += t_ref;
-          if (!mono) {
-            const double t_b = sample_path(scene, g, p, st, band_lo[b] + band_width[b] * d.v[4], d.v[2], d.v[3], lc);
-            diff_acc[half][(a * nb + b) * strata + st] += float(t_b - t_ref);
-          }
+          if (!mono)
+            for (int b = group; b < nb; b += G) {
+              const double t_b = sample_path(scene, g, p, st, band_lo[b] + band_width[b] * d.v[4], d.v[2], d.v[3],
+                                             g.analyzer_in, lc);
+              diff_acc[half][(a * nb + b) * strata + st] += float(t_b - t_ref);
+            }
         }
       }
       if (counters) {

@@ -17,7 +17,8 @@
 // a Lambertian pupil); stratified into the disk sin θ ≤ NA_c (the rays that would be lit without
 // the specimen) and the annulus outside it, one sample each a pass, every stratum weighted by its
 // pupil area, so that the light bent in from the annulus is still found. Exposure: the empty field
-// (no fragment) of the same stack gives Y = 1.
+// (no fragment) of the same stack with the analyzer out gives Y = 1 (so between parallel polars an
+// empty field is 1, between crossed ones about 0).
 //
 // Where the time goes (issue 12's speed targets), and what is exact about each saving:
 // - A pixel whose every ray crosses the liquid layer outside all fragments' bounding boxes sees
@@ -41,15 +42,31 @@
 // cone (the issue's "or forward, whichever converges faster") is what would remove it.
 // - A preview (options.preview_factor > 1): first an image 1/factor the size, one inner-stratum
 //   sample a pixel at the reference wavelength (grey), spread bilinearly over the full grid.
+//
+// Polarization (core/specimen/jones_path.h): every path is traced with complex fields, split
+// into a crystal's two modes and summed coherently at the polarizer. Analyzer in: the backward
+// path starts with the analyzer's vibration, I = |⟨p|J|a⟩|²; analyzer out: with two orthogonal
+// ones, I = Σ_a |⟨p|J|a⟩|² (the whole power behind the polarizer, exact).
+//
+// Spectrum: `bands` bands over 380–780 nm, each weighted by its ∫ observer × illuminant; the λ
+// within a band is the pass's Kronecker coordinate (stratified over the passes). With the analyzer
+// in, interference colours vary with λ as sin²(πΓ/λ): a band must be narrow against the period
+// λ²/Γ of that oscillation where the eye still sees colour (Γ ≲ 2000 nm: λ²/Γ ≳ 120 nm at 500 nm;
+// beyond that the colours fade to the high-order white, which any band width averages correctly),
+// so at least kCrossedPolarBands bands (12.5 nm) are used. A pass traces the reference wavelength
+// and, as control-variate differences to it, one band (plane light) or 8 bands, one of every
+// fourth in turn (analyzer in), so a pass's cost grows by the bands the colour needs, not by 32.
 #include <atomic>
 #include <cstdint>
 #include <functional>
 
 #include <glm/vec2.hpp>
 
+#include "core/base/units.h"
 #include "core/render/render_image.h"
 #include "core/spectrum/illuminant.h"
 #include "core/specimen/specimen_scene.h"
+#include "core/specimen/jones_path.h"
 #include "core/specimen/specimen_tracer.h"
 
 namespace pmsim {
@@ -61,6 +78,10 @@ namespace pmsim {
 // ~17 mm focal length: sin θ ≈ 0.5/17).
 constexpr double kStoppedDownApertureNa = 0.03;
 
+// Bands with the analyzer in (see above): 12.5 nm, a tenth of the period of sin²(πΓ/λ) at the
+// upper end of the second order.
+constexpr int kCrossedPolarBands = 32;
+
 struct PlaneLightOptions {
   int width = 256, height = 256;
   glm::dvec2 centre_um{0.0};        // specimen point under the image centre
@@ -70,16 +91,22 @@ struct PlaneLightOptions {
   double objective_na = 0.25;
   double condenser_aperture_na = 0.0;  // 0: kStoppedDownApertureNa
   double polarizer_rad = 0.0;       // vibration direction of the polarizer, from +x
+  bool analyzer_in = false;         // crossed (or any) polars: the analyzer's vibration is traced
+  double analyzer_rad = kPi / 2;    // the analyzer's vibration direction, from +x (π/2: N–S)
+  // Plane light with the one-vibration tracer of specimen_tracer.h instead of the polarization-
+  // exact one (analyzer out only): kept to compare the two in tests.
+  bool scalar_tracer = false;
   Illuminant illuminant = Illuminant::D65;
   double single_wavelength_nm = 0.0;  // > 0: monochromatic (R = G = B = relative intensity)
-  int bands = 8;                    // spectral bands over 380–780 nm (white light)
+  int bands = 8;                    // spectral bands over 380–780 nm (white light; analyzer in: ≥ kCrossedPolarBands)
   int spp = 64;                     // traced paths per pixel in all (rounded up to whole passes)
   double tolerance_de2000 = 0.0;    // > 0: stop once the split-half estimate is below it
   int preview_factor = 0;           // > 1: a first image at 1/factor of the size (see above)
   std::uint64_t seed = 1;
 };
 
-// Renders pass by pass (each pass one inner and one annulus direction per pixel);
+// Renders pass by pass (each pass one inner and one annulus direction per pixel, traced at the
+// reference wavelength and at one band, or 8 bands with the analyzer in);
 // `progress` sees the image after each pass (and the preview first, passes = 1, if asked for). `counters` (optional) sums every Fresnel event.
 // `cancel` (optional, polled every pixel row): once raised, the pass in flight is abandoned and
 // the last finished pass's image is returned (converged = false), so an interactive client can

@@ -100,6 +100,16 @@ double SpecimenScene::index(int id, double wavelength_nm, const glm::dvec3& vibr
   return 1.0 / std::sqrt(a * a / (n.x * n.x) + b * b / (n.y * n.y) + c * c / (n.z * n.z));
 }
 
+const Crystal* SpecimenScene::crystal_of(int medium) const {
+  if (medium < kFirstFragment || mineral_.symmetry() == CrystalSymmetry::Isotropic) return nullptr;
+  return &mineral_;
+}
+
+glm::dmat3 SpecimenScene::orientation_of(int medium) const {
+  if (medium < kFirstFragment) return glm::dmat3(1.0);
+  return orientations_.at(std::size_t(medium - kFirstFragment));
+}
+
 bool SpecimenScene::intersect(const glm::dvec3& o, const glm::dvec3& d, double tnear, SpecimenHit& hit) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);

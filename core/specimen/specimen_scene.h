@@ -57,6 +57,11 @@ class SpecimenScene {
   // isotropic media ignore it; a fragment uses the radius of its indicatrix along the vibration,
   // 1/n'² = Σ (v·axis_i)²/n_i² (Nesse 2012 §7, the indicatrix), with axes = crystal_to_lab columns.
   double index(int id, double wavelength_nm, const glm::dvec3& vibration) const;
+  // The crystal of medium `id` (nullptr for an isotropic medium: air, glass, liquid, or a fragment
+  // of an isotropic mineral) and its indicatrix axes in the lab frame (columns X, Y, Z; the
+  // identity for isotropic media): what the polarization-exact tracer splits modes with.
+  const Crystal* crystal_of(int medium) const;
+  glm::dmat3 orientation_of(int medium) const;
   // Nearest interface along o + t·d (d unit), t > tnear.
   bool intersect(const glm::dvec3& o, const glm::dvec3& d, double tnear, SpecimenHit& hit) const;
   // The fragment a vertical line through (x, y) passes through (−1: none): the ground truth of

@@ -18,6 +18,7 @@ void InterfaceCounters::add(const InterfaceCounters& o) {
   reflected += o.reflected;
   transmitted += o.transmitted;
   max_defect = std::max(max_defect, o.max_defect);
+  capped_power += o.capped_power;
 }
 
 SpecimenPath trace_specimen(const SpecimenScene& scene, PolarizedRay ray, InterfaceCounters* counters,

@@ -29,6 +29,8 @@ struct InterfaceCounters {
   std::uint64_t events = 0, tir = 0, lost = 0;
   double incident = 0.0, reflected = 0.0, transmitted = 0.0;
   double max_defect = 0.0;  // max over events of |incident − reflected − transmitted| / incident
+  // Power dropped by the polarization-exact tracer's branch cap (core/specimen/jones_path.h).
+  double capped_power = 0.0;
   void add(const InterfaceCounters& o);
 };
 

@@ -1,0 +1,80 @@
+#pragma once
+// A polarization-exact path through a SpecimenScene, traced backward from the objective: each
+// path carries complex transverse fields (a Jones vector in 3-D) instead of one linear vibration,
+// and entering an anisotropic medium it splits into that medium's two eigenmodes, each refracted
+// with its own index and carrying its own phase, so that the branches' coherent sum at the
+// polarizer gives interference colours between crossed polars and the relief of each vibration.
+//
+// Events (at each interface the refracted light is followed, the reflected part counted and
+// dropped, as in trace_specimen; under total internal reflection the reflected light is followed):
+//  * Isotropic → isotropic, and a crystal mode → an isotropic medium (the mode seen as a wave of
+//    its index n_k): exact complex Fresnel amplitudes (core/optics/fresnel.h) in the s/p frame,
+//    power-normalized, τ = t·√(n_t cosθt / n_i cosθi), so |E|² is the transmitted power and
+//    R + T = 1 per event; under TIR r_s, r_p carry the TIR phases (|r| = 1).
+//  * Into a crystal: per mode k (fast, slow of the central section ⟂ the wave normal,
+//    core/crystal/section_optics.h), the refracted wave normal t_k solves Snell's law with the
+//    direction-dependent index n_k(t_k) (fixed-point iteration); the mode takes the incident
+//    field's component along a_k = (e_k·s)s + (e_k·p_t)p_i (the mode's vibration e_k carried back
+//    through the s/p frame) with the power transmittance of that linear vibration,
+//    T_k = (e_k·s)²T_s + (e_k·p_t)²T_p, so R_k + T_k = 1 for each mode. The cross-coupling of
+//    a mode's transmitted field into the other mode (t_s ≠ t_p at oblique incidence) is dropped:
+//    second order in (t_s − t_p)·sinθ, ≈ 1e-4 at the angles of a microscope objective. A mode
+//    that would be evanescent is dropped (its light reflected).
+//  * TIR inside a crystal: the mirror direction, the reflected field split into the crystal's
+//    modes at that direction (both taken along the mirror direction: the change of angle on mode
+//    conversion is neglected).
+//  * Bulk: phase k0·n·L in double (never wrapped, so retardations of thousands of waves stay
+//    exact), pleochroic attenuation exp(−μ(e_k)·L/2) of the amplitude with μ(e) = Σ μ_i (e·axis_i)²
+//    (crystal.h's principal_absorption_per_um). Wave normals are followed (walk-off neglected).
+//  * Exit below the slide: each branch's field is projected on the polarizer (its vibration
+//    projected ⟂ the branch) with the phase of a plane wave arriving along the branch,
+//    −k0·n·(d·(x_exit − x_start)), which makes the branches' phase difference the one of a
+//    tilted plate (exact for parallel faces). Branches leaving in the same direction add
+//    coherently; those leaving in different directions with the coherence exp(−k0·L·|Δd|²)
+//    (jones_path.cpp: 1 for a plate, fringes at a shallow wedge, intensities added for branches
+//    that leave by other faces, which stand for other points of the incoherent source).
+// Branch tree: at most kMaxJonesLeaves leaves; past that a split keeps only the stronger mode and
+// the other's power is counted in InterfaceCounters::capped_power (a grain mount needs 2 leaves
+// for a fragment, 4 after one TIR inside it; 8 is never reached in the tests' scenes).
+//
+// Reciprocity: for media without optical activity the backward Jones matrix is the transpose of
+// the forward one, so ⟨p|J_forward|a⟩ is the bilinear product p·(J_backward a): tracing backward
+// from the analyzer's vibration a gives the amplitude the polarizer's light reaches it with.
+
+#include <glm/vec3.hpp>
+
+#include "core/specimen/specimen_scene.h"
+#include "core/specimen/specimen_tracer.h"
+
+namespace pmsim {
+
+constexpr int kMaxJonesLeaves = 8;
+
+struct JonesPathRequest {
+  glm::dvec3 origin{0.0};      // in the air above the cover glass
+  glm::dvec3 dir{0.0, 0.0, -1.0};  // pointing down (made unit)
+  double wavelength_nm = 550.0;
+  // Backward start vibrations (projected ⟂ dir and normalized): 1 = the analyzer's; 2 = two
+  // orthogonal ones (analyzer out: I = Σ_a |⟨p|J|a⟩|², the whole power behind the polarizer).
+  int starts = 1;
+  glm::dvec3 start_vibration{1.0, 0.0, 0.0};  // the first; the second is dir × first
+  glm::dvec3 polarizer{1.0, 0.0, 0.0};        // the polarizer's vibration (lab / specimen frame)
+  double condenser_sin_max = 1.0;             // a branch is lit if it leaves with sinθ ≤ this
+  int max_interfaces = 64;                    // per branch
+};
+
+struct JonesPath {
+  // |⟨p|J|a_i⟩|² per start vibration, the lit branches summed with their mutual coherence.
+  double power[2]{};
+  int leaves = 0;                       // branches that ended (lit or not)
+  int lit = 0;                          // branches that left below inside the condenser's cone
+  int interfaces = 0;                   // Fresnel events over all branches
+  double intensity(int starts) const {
+    return starts > 1 ? power[0] + power[1] : power[0];
+  }
+};
+
+JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathRequest& request,
+                               InterfaceCounters* counters = nullptr);
+
+}  // namespace pmsim
