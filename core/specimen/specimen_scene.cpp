@@ -33,7 +33,7 @@ SpecimenScene::SpecimenScene(const std::vector<FragmentShape>& fragments, const 
   }
   if (!(layers_.liquid_um > 0.0)) layers_.liquid_um = top + 5.0;
   if (top >= layers_.liquid_um) throw std::invalid_argument("a fragment is taller than the liquid layer");
-  build(extent);
+  build(extent, false);
 }
 
 SpecimenScene::SpecimenScene(std::vector<SpecimenMedium> media, SpecimenMesh mesh, const Crystal& mineral,
@@ -65,10 +65,11 @@ SpecimenScene::SpecimenScene(std::vector<SpecimenMedium> media, SpecimenMesh mes
   triangles_ = std::move(mesh.triangles);
   front_ = std::move(mesh.front);
   back_ = std::move(mesh.back);
-  build(extent);
+  // A slab's walls, top and bottom faces meet along edges that rays cross at every boundary.
+  build(extent, true);
 }
 
-void SpecimenScene::build(double extent) {
+void SpecimenScene::build(double extent, bool robust) {
   // The glass faces: quads far beyond any ray of the field (a ray leaves the stack within a few
   // slide thicknesses of where it entered), normal +z, air/glass/liquid on their sides.
   const double L = extent + 10.0 * (layers_.slide_um + layers_.cover_um + layers_.liquid_um) + 1e4;
@@ -95,6 +96,7 @@ void SpecimenScene::build(double extent) {
   scene_ = rtcNewScene(device_);
   // A section slab has up to ~2 M triangles: a medium-quality BVH builds several times faster
   // and traces nearly as fast; fragment meshes are small, built as before.
+  if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, triangles_.size() > 200000 ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vb = static_cast<float*>(

@@ -115,7 +115,8 @@ class SpecimenScene {
 
  private:
   // The glass faces (quads reaching `extent_um` and far beyond) and the Embree scene.
-  void build(double extent_um);
+  // robust: Embree's watertight mode (no ray slips between the triangles of a shared edge).
+  void build(double extent_um, bool robust);
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
