@@ -122,8 +122,9 @@ class SectionMap {
   // Optical domain under a section point (mm).
   int domain_at(const glm::dvec2& p_mm) const;
   // The crack family (index into grains[grain].cracks) whose open crack covers p (domain_at gives
-  // kMediumDomain there); −1 (and grain −1) elsewhere.
-  int crack_family_at(const glm::dvec2& p_mm, int& grain) const;
+  // kMediumDomain there); −1 (and grain −1) elsewhere. min_width_mm > crack_width_mm widens the
+  // cracks (a grid coarser than a crack samples every crack it crosses, not a dashed subset).
+  int crack_family_at(const glm::dvec2& p_mm, int& grain, double min_width_mm = 0.0) const;
   int domain_count() const { return static_cast<int>(domain_grain_.size()); }
   // Crystal (nullptr for slide and medium), orientation and mineral name of a domain.
   const Crystal* crystal_of_domain(int d) const;
@@ -149,7 +150,7 @@ class SectionMap {
  private:
   int nearest_grain(const glm::dvec2& p_mm) const;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
-  int crack_family_in_grain(int grain, const glm::dvec2& p_mm) const;
+  int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double width_mm) const;
 
   std::vector<int> domain_grain_;  // per domain: grain index, −1 for slide and medium
   // Grid over the section's extent; per cell the grains that can be nearest in it, in index order.

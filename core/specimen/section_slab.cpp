@@ -90,10 +90,13 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
         const int d = m.domain_at(p_mm);
         const std::size_t n = std::size_t(j) * N + i;
         label[n] = medium_of_domain[std::size_t(d)];
-        if (d != SectionMap::kMediumDomain) continue;
+        if (d == SectionMap::kSlideDomain) continue;
+        // Cracks at least a grid step wide: a crack narrower than h would be hit by some nodes
+        // and missed by others, a dashed line of pinholes.
         int g = -1;
-        const int f = m.crack_family_at(p_mm, g);
+        const int f = m.crack_family_at(p_mm, g, 1e-3 * h);
         if (f < 0) continue;
+        label[n] = kSpecimenLiquid;
         // The cleavage plane through the crack's trace on the top face reaches the bottom face
         // shifted along its horizontal normal by t·n_z/|n_h| (n·Δx = 0 over a drop of t).
         const glm::dvec3 pn = m.grains[std::size_t(g)].cracks[std::size_t(f)].plane_normal;
@@ -174,7 +177,10 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
 
   // Vertices: top (index cell) and bottom (C² + cell).
   const WaveField fx(o.seed * 4 + 1, 400.0, 900.0), fy(o.seed * 4 + 2, 400.0, 900.0);
-  const WaveField rough(o.seed * 4 + 3, 3.0, 8.0);
+  // Polishing relief of 8–20 µm wavelength: RMS slope ≈ 2π·0.15/14 ≈ 0.07 rad, which a surface
+  // between media 0.3 apart in n (garnet in epoxy) turns into deviations of ~0.02 rad, the size of
+  // a stopped-down condenser's cone: shagreen, while quartz (Δn ≈ 0.01) stays smooth.
+  const WaveField rough(o.seed * 4 + 3, 8.0, 20.0);
   // RMS |shift| = t·tan(inclination): each component's RMS is that over √2.
   const double amp = t * std::tan(radians(o.inclination_deg)) / std::sqrt(2.0);
   const double z_bottom = o.film_um, z_top = o.film_um + t;

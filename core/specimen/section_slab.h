@@ -38,7 +38,7 @@ struct SectionSlabOptions {
   double thickness_um = 30.0;  // the slab
   double film_um = 3.0;        // mounting medium under and over the slab
   double inclination_deg = 25.0;   // RMS lean of grain boundaries (0: vertical walls)
-  double roughness_um = 0.15;      // RMS of the polishing relief of the top surface (0: flat)
+  double roughness_um = 0.15;      // RMS of the polishing relief of the top surface, 8–20 µm wavelengths (0: flat)
   std::uint64_t seed = 0x5eedu;
 };
 
