@@ -120,9 +120,13 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
   }
   // The refracting specimen's rows (issue 12), under the same filters as the scenes above.
   if (std::string("grain-mount-garnet-1.54").find(opt.scene_filter) != std::string::npos &&
-      std::string("plane-light-reference-half plane-light-first-pass plane-light-64spp").find(opt.strategy_filter) !=
+      std::string("plane-light-reference-half plane-light-first-pass plane-light-converged plane-light-64spp").find(opt.strategy_filter) !=
           std::string::npos)
     for (BenchRow& row : grain_mount_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
+  if (std::string("section-granite-plane-light").find(opt.scene_filter) != std::string::npos &&
+      std::string("plane-light-reference-half plane-light-first-pass plane-light-converged plane-light-64spp")
+              .find(opt.strategy_filter) != std::string::npos)
+    for (BenchRow& row : section_relief_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);
