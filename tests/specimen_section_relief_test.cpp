@@ -144,7 +144,8 @@ TEST(SpecimenSectionRelief, GarnetHasADarkOutlineQuartzNearlyNone) {
   EXPECT_LT(std::abs(contrast(quartz)), 0.1 * contrast(garnet));
 }
 
-// (c) Watertight: every crystal region of the slab is a closed surface, and a straight ray from
+// (c) Watertight: every crystal region of the slab is a closed surface, no face is turned over,
+// and a straight ray from
 // above meets a consistent medium sequence: at each hit the side it comes from is the medium it
 // is in, down to the air below the slide.
 TEST(SpecimenSectionRelief, SlabIsWatertight) {
@@ -172,6 +173,18 @@ TEST(SpecimenSectionRelief, SlabIsWatertight) {
       }
     }
   }
+  // No fold: the top and bottom faces (three vertices within 1 µm in z; a wall spans the slab's
+  // 30 µm) all face up, as they were wound.
+  int folded = 0;
+  for (std::size_t p = 0; p < slab_triangles; ++p) {
+    const glm::uvec3 t = slab->triangle(p);
+    const glm::dvec3 a = slab->vertex(t.x), b = slab->vertex(t.y), c = slab->vertex(t.z);
+    if (std::max({a.z, b.z, c.z}) - std::min({a.z, b.z, c.z}) > 1.0) continue;
+    if (glm::cross(b - a, c - a).z < 0.0 && folded++ < 4)
+      std::printf("turned-over face %zu at (%.2f %.2f %.2f), media %d/%d\n", p, a.x, a.y, a.z, slab->front_of(p),
+                  slab->back_of(p));
+  }
+  EXPECT_EQ(folded, 0);
   int open_edges = 0;
   for (const auto& e : edges) open_edges += e.second != 0;
   std::printf("%zu region edges, %d open\n", edges.size(), open_edges);
