@@ -66,7 +66,9 @@ std::vector<BenchRow> plane_light_rows(const std::string& name, const Scene& sce
   const double done_cpu_ms = process_cpu_ms() - cpu0;
   add("plane-light-first-pass", first.xyz, first.time_ms, first_cpu_ms, int(first.samples_per_pixel), "product",
       done.model_report);
-  if (converged.passes > 0)
+  if (converged.passes == 0)
+    log << "  no image within mean ΔE00 1 of the reference by " << done.samples_per_pixel << " samples a pixel\n";
+  else
     add("plane-light-converged", converged.xyz, converged.time_ms, converged_cpu_ms,
         int(converged.samples_per_pixel), "product", done.model_report + ", the first image within mean ΔE00 1");
   add("plane-light-64spp", done.xyz, done.time_ms, done_cpu_ms, int(done.samples_per_pixel), "product",
