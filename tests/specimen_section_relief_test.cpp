@@ -307,3 +307,26 @@ TEST(SpecimenSectionRelief, TracedImageRegistersWithTheSectionImage) {
   EXPECT_LT(right, 0.8);
   EXPECT_LT(right, wrong - 0.1);
 }
+
+// The app does not rebuild the slab for a change of polarizer, focus or aperture: section_slab
+// returns the cached one; a stage move (a new window) or another mounting medium builds anew.
+TEST(SpecimenSectionRelief, SlabIsCachedAcrossViewChanges) {
+  pmsim::Scene scene;
+  scene.sample.type = pmsim::SampleType::Section;
+  scene.sample.section = "granite";
+  scene.analyzer_in = false;
+  scene.render.width = scene.render.height = 32;
+  const auto a = pmsim::section_slab(scene);
+  pmsim::Scene view = scene;
+  view.polarizer_deg = 40.0;
+  view.focus_um = 7.0;
+  view.condenser.aperture_na = 0.2;
+  view.stage_deg = 75.0;  // the window holds the field at every stage angle
+  EXPECT_EQ(pmsim::section_slab(view).get(), a.get());
+  pmsim::Scene moved = scene;
+  moved.stage.x_mm = 1.0;
+  EXPECT_NE(pmsim::section_slab(moved).get(), a.get());
+  pmsim::Scene liquid = scene;
+  liquid.sample.medium_index = 1.60;
+  EXPECT_NE(pmsim::section_slab(liquid).get(), a.get());
+}
