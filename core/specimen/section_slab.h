@@ -17,9 +17,12 @@
 //
 // Inclined boundaries: the bottom vertices are the top vertices moved by a smooth reproducible
 // field (a function of section position only) of RMS length thickness·tan(inclination), with
-// wavelengths of 300–700 µm, so that boundaries lean by up to ~25° and the slab does not fold.
+// wavelengths of 400–900 µm, so that boundaries lean by ~25° and the slab does not fold.
 // Cleavage cracks (mounting medium) lean as their cleavage plane does (CleavageCracks::
-// plane_normal), blended into the field over a distance that keeps the slope of the blend < 1.
+// plane_normal), blended into the field over a distance that keeps the slope of the blend < 1
+// and box-filtered where cracks of different planes meet (their leans cannot both be followed).
+// Cracks are made at least one grid step wide. The top's boundary vertices get two smoothing
+// steps (the bottom keeps the raw ones: a thin smoothed quad could turn over under the lean).
 #include <cstdint>
 #include <memory>
 
