@@ -203,7 +203,7 @@ int SectionMap::nearest_grain(const glm::dvec2& p) const {
   return best;
 }
 
-int SectionMap::crack_family_in_grain(int gi, const glm::dvec2& p, double width_mm) const {
+int SectionMap::crack_family_in_grain(int gi, const glm::dvec2& p, double crack_mm) const {
   const SectionGrain& g = grains[gi];
   const glm::dvec2 d = p - g.centre_mm;
   // Cleavage cracks: in family f, crack k lies near offset (k + ½ + jitter)·spacing along the
@@ -215,7 +215,7 @@ int SectionMap::crack_family_in_grain(int gi, const glm::dvec2& p, double width_
     const double k = std::floor(s);
     const auto ki = static_cast<std::uint64_t>(static_cast<std::int64_t>(k));
     const double centre = 0.5 + 0.6 * (hash01(gi, f, ki) - 0.5);
-    if (std::abs(s - k - centre) * c.spacing_mm < 0.5 * width_mm) {
+    if (std::abs(s - k - centre) * c.spacing_mm < 0.5 * crack_mm) {
       const double along = (d.x * c.normal.y - d.y * c.normal.x) / (4.0 * c.spacing_mm) + hash01(gi, f, ki, 1);
       const auto seg = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(along)));
       if (hash01(gi, f + 17, ki, seg + 2) < 0.8) return static_cast<int>(f);

@@ -150,7 +150,7 @@ class SectionMap {
  private:
   int nearest_grain(const glm::dvec2& p_mm) const;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
-  int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double width_mm) const;
+  int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;
 
   std::vector<int> domain_grain_;  // per domain: grain index, −1 for slide and medium
   // Grid over the section's extent; per cell the grains that can be nearest in it, in index order.
