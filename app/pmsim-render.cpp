@@ -40,7 +40,7 @@
 #include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
-#include "core/specimen/grain_mount_render.h"
+#include "core/specimen/traced_specimen.h"
 
 namespace {
 
@@ -209,10 +209,10 @@ int main(int argc, char** argv) {
           for (const std::string& w : f->warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       const bool tty = ::isatty(STDERR_FILENO);
       const auto bar = tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr;
-      // A grain mount is a refracting 3-D specimen (core/specimen), traced with its polarization.
-      const bool grains = scene.sample_in && scene.sample.type == pmsim::SampleType::Grains;
-      pmsim::RenderImage img =
-          grains ? pmsim::render_grain_mount(scene, bar) : pmsim::ProgressiveRenderer::render(scene, 0, bar);
+      // A grain mount, and a thin section in plane light with optics.relief on, are refracting
+      // 3-D specimens (core/specimen), traced with their polarization.
+      pmsim::RenderImage img = pmsim::is_traced_specimen(scene) ? pmsim::render_traced_specimen(scene, bar)
+                                                                : pmsim::ProgressiveRenderer::render(scene, 0, bar);
       if (tty) std::fprintf(stderr, "\n");
       width = img.width;
       height = img.height;

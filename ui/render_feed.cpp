@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "core/microscope/scene_check.h"
-#include "core/specimen/grain_mount_render.h"
+#include "core/specimen/traced_specimen.h"
 
 namespace pmsim::ui {
 
@@ -46,7 +46,14 @@ void RenderFeed::run() {
     busy_ = true;
     grain_cancel_.store(false);  // under the lock: a later submit() raises it again
     lock.unlock();
-    const bool grains = scene.sample_in && scene.sample.type == SampleType::Grains;
+    // Grain mounts and sections in plane light with relief: traced on this thread, not by the
+    // progressive renderer (the slab is cached, so a polarizer or focus change does not rebuild it).
+    bool grains = false;
+    try {
+      grains = is_traced_specimen(scene);
+    } catch (const std::exception&) {
+      // An unloadable section: the renderer's restart below reports it.
+    }
     std::optional<Failure> failed;
     try {
       if (grains) {
@@ -86,7 +93,7 @@ void RenderFeed::run() {
 
 void RenderFeed::render_grains(const Scene& scene, std::uint64_t generation) {
   try {
-    render_grain_mount(
+    render_traced_specimen(
         scene,
         [&](const RenderImage& img) {
           std::lock_guard<std::mutex> lock(mu_);

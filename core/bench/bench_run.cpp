@@ -128,6 +128,10 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
       std::string("crossed-polars-reference-half crossed-polars-first-pass crossed-polars-64spp")
               .find(opt.strategy_filter) != std::string::npos)
     for (BenchRow& row : crossed_polar_grain_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
+  if (std::string("section-granite-plane-light").find(opt.scene_filter) != std::string::npos &&
+      std::string("plane-light-reference plane-light-preview plane-light-first-pass plane-light-64spp plane-light-256spp-or-tolerance-1").find(opt.strategy_filter) !=
+          std::string::npos)
+    for (BenchRow& row : section_relief_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

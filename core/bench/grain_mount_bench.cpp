@@ -6,25 +6,16 @@
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
 #include "core/bench/image_error.h"
 #include "core/specimen/grain_mount_render.h"
+#include "core/specimen/section_slab.h"
 #include "core/spectrum/cie.h"
 
 namespace pmsim {
 
-std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
-  Scene scene;
-  scene.sample.type = SampleType::Grains;
-  scene.sample.mineral = "garnet";
-  scene.sample.medium_index = 1.54;
-  scene.focus_um = 5.0;
-  scene.analyzer_in = false;  // plane light (a default Scene has the analyzer in)
-  scene.render.width = scene.render.height = size;
-  const std::string name = "grain-mount-garnet-1.54";
-  log << "scene " << name << ": specimen… " << std::flush;
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto specimen = grain_mount_specimen(scene);
-  const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  log << specimen->fragment_count() << " fragments, " << build_ms << " ms; reference… " << std::flush;
+namespace {
 
+// The rows of one refracting specimen in plane light, rendered as the product renders it.
+std::vector<BenchRow> plane_light_rows(const std::string& name, const Scene& scene, const SpecimenScene& specimen,
+                                       double build_ms, int size, std::ostream& log) {
   // The reference: 1024 paths a pixel with another seed (its own split-half estimate is logged
   // and recorded on its row), so the rows below are measured against an independent image.
   PlaneLightOptions ref_opt = plane_light_options(scene);
@@ -33,7 +24,7 @@ std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
   ref_opt.preview_factor = 0;
   ref_opt.seed = 2;
   const double ref_cpu0 = process_cpu_ms();
-  const RenderImage ref = render_plane_light(*specimen, ref_opt);
+  const RenderImage ref = render_plane_light(specimen, ref_opt);
   const double ref_cpu_ms = process_cpu_ms() - ref_cpu0;
   log << ref.time_ms << " ms, its split-half estimate ΔE00 " << ref.error_estimate.value_or(-1.0) << "\n";
   const glm::dvec3 white = illuminant_white_xyz(scene.illuminant);
@@ -69,7 +60,7 @@ std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
   RenderImage preview, first, at64;
   double preview_cpu_ms = 0.0, first_cpu_ms = 0.0, at64_cpu_ms = 0.0;
   const double cpu0 = process_cpu_ms();
-  const RenderImage done = render_plane_light(*specimen, opt, [&](const RenderImage& img) {
+  const RenderImage done = render_plane_light(specimen, opt, [&](const RenderImage& img) {
     if (img.passes == 1) preview = img, preview_cpu_ms = process_cpu_ms() - cpu0;
     if (img.passes == 2) first = img, first_cpu_ms = process_cpu_ms() - cpu0;
     if (img.samples_per_pixel == 64) at64 = img, at64_cpu_ms = process_cpu_ms() - cpu0;
@@ -81,6 +72,40 @@ std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
   add("plane-light-256spp-or-tolerance-1", done, done_cpu_ms, "product",
       done.model_report + (done.samples_per_pixel < 256 ? ", stopped at estimate < 1" : ", estimate not below 1"));
   return rows;
+}
+
+}  // namespace
+
+std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
+  Scene scene;
+  scene.sample.type = SampleType::Grains;
+  scene.sample.mineral = "garnet";
+  scene.sample.medium_index = 1.54;
+  scene.focus_um = 5.0;
+  scene.render.width = scene.render.height = size;
+  const std::string name = "grain-mount-garnet-1.54";
+  log << "scene " << name << ": specimen… " << std::flush;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto specimen = grain_mount_specimen(scene);
+  const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  log << specimen->fragment_count() << " fragments, " << build_ms << " ms; reference… " << std::flush;
+
+  return plane_light_rows(name, scene, *specimen, build_ms, size, log);
+}
+
+std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
+  Scene scene;
+  scene.sample.type = SampleType::Section;
+  scene.sample.section = "granite";
+  scene.analyzer_in = false;
+  scene.render.width = scene.render.height = size;
+  const std::string name = "section-granite-plane-light";
+  log << "scene " << name << ": slab… " << std::flush;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto slab = section_slab(scene);
+  const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  log << slab->triangle_count() << " triangles, " << build_ms << " ms; reference… " << std::flush;
+  return plane_light_rows(name, scene, *slab, build_ms, size, log);
 }
 
 }  // namespace pmsim

@@ -13,5 +13,9 @@
 namespace pmsim {
 
 std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log);
+// The granite thin section at 10× in plane light (analyzer out, optics.relief on): the slab traced
+// as above, its build time reported alongside (not in the rows' times: a polarizer or focus
+// change reuses the cached slab).
+std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log);
 
 }  // namespace pmsim

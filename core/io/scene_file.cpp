@@ -110,7 +110,7 @@ std::map<std::string, std::string> as_phases(const json& v) {
   return m;
 }
 
-// render.native: on|off (booleans accepted too).
+// render.native, optics.relief: on|off (booleans accepted too).
 bool as_on_off(const json& v) {
   if (v.is_boolean()) return v.get<bool>();
   const std::string s = lower_string_value(v);
@@ -252,6 +252,8 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
        [](const Scene& s) -> json { return s.optics.lens_depth; }},
+      {"optics.relief", [](Scene& s, const json& v) { s.optics.relief = as_on_off(v); },
+       [](const Scene& s) -> json { return s.optics.relief ? json(nullptr) : json("off"); }},
       {"optics.schlick",  // a bool in files and --set: true is the Schlick approximation
        [](Scene& s, const json& v) {
          s.optics.fresnel = as_bool(v) ? FresnelModel::Schlick : FresnelModel::Exact;

@@ -203,7 +203,7 @@ int SectionMap::nearest_grain(const glm::dvec2& p) const {
   return best;
 }
 
-int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
+int SectionMap::crack_family_in_grain(int gi, const glm::dvec2& p, double crack_mm) const {
   const SectionGrain& g = grains[gi];
   const glm::dvec2 d = p - g.centre_mm;
   // Cleavage cracks: in family f, crack k lies near offset (k + ½ + jitter)·spacing along the
@@ -215,12 +215,28 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
     const double k = std::floor(s);
     const auto ki = static_cast<std::uint64_t>(static_cast<std::int64_t>(k));
     const double centre = 0.5 + 0.6 * (hash01(gi, f, ki) - 0.5);
-    if (std::abs(s - k - centre) * c.spacing_mm < 0.5 * crack_width_mm) {
+    if (std::abs(s - k - centre) * c.spacing_mm < 0.5 * crack_mm) {
       const double along = (d.x * c.normal.y - d.y * c.normal.x) / (4.0 * c.spacing_mm) + hash01(gi, f, ki, 1);
       const auto seg = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(along)));
-      if (hash01(gi, f + 17, ki, seg + 2) < 0.8) return kMediumDomain;
+      if (hash01(gi, f + 17, ki, seg + 2) < 0.8) return static_cast<int>(f);
     }
   }
+  return -1;
+}
+
+int SectionMap::crack_family_at(const glm::dvec2& p, int& grain, double min_width_mm) const {
+  grain = -1;
+  if (raster || grains.empty() || !(std::abs(p.x) <= 0.5 * width_mm && std::abs(p.y) <= 0.5 * height_mm)) return -1;
+  const int gi = nearest_grain(p);
+  const int f = crack_family_in_grain(gi, p, std::max(crack_width_mm, min_width_mm));
+  if (f >= 0) grain = gi;
+  return f;
+}
+
+int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
+  if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return kMediumDomain;
+  const SectionGrain& g = grains[gi];
+  const glm::dvec2 d = p - g.centre_mm;
   int zone = static_cast<int>(g.zones.size()) - 1;
   if (zone > 0) {
     const double r2 = ellipse_q(g, p);
@@ -507,6 +523,7 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
       k.trace_rad = std::atan2(tr.y, tr.x);
       k.normal = glm::normalize(glm::dvec2(n.x, n.y));
       k.spacing_mm = *spacing;
+      k.plane_normal = glm::normalize(n);
       g.cracks.push_back(k);
     }
 }

@@ -41,6 +41,9 @@ struct CleavageCracks {
   double trace_rad = 0.0;    // direction of the trace, counter-clockwise from +x
   glm::dvec2 normal{0, 1};   // unit normal of the trace in the section
   double spacing_mm = 0.05;  // mean distance between cracks
+  // Unit normal of the cleavage plane in the section frame (z ⟂ the section): the crack's real
+  // inclination in a slab (core/specimen/section_slab.h). Its horizontal part is along `normal`.
+  glm::dvec3 plane_normal{0, 1, 0};
 };
 
 // Cleavage planes within this angle of vertical show as sharp crack traces: a plane inclined θ
@@ -118,6 +121,10 @@ class SectionMap {
 
   // Optical domain under a section point (mm).
   int domain_at(const glm::dvec2& p_mm) const;
+  // The crack family (index into grains[grain].cracks) whose open crack covers p (domain_at gives
+  // kMediumDomain there); −1 (and grain −1) elsewhere. min_width_mm > crack_width_mm widens the
+  // cracks (a grid coarser than a crack samples every crack it crosses, not a dashed subset).
+  int crack_family_at(const glm::dvec2& p_mm, int& grain, double min_width_mm = 0.0) const;
   int domain_count() const { return static_cast<int>(domain_grain_.size()); }
   // Crystal (nullptr for slide and medium), orientation and mineral name of a domain.
   const Crystal* crystal_of_domain(int d) const;
@@ -143,6 +150,7 @@ class SectionMap {
  private:
   int nearest_grain(const glm::dvec2& p_mm) const;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
+  int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;
 
   std::vector<int> domain_grain_;  // per domain: grain index, −1 for slide and medium
   // Grid over the section's extent; per cell the grains that can be nearest in it, in index order.

@@ -1,0 +1,40 @@
+#include "core/specimen/traced_specimen.h"
+
+#include <stdexcept>
+
+#include "core/microscope/map_section.h"
+#include "core/specimen/grain_mount_render.h"
+#include "core/specimen/section_slab.h"
+
+namespace pmsim {
+
+bool is_traced_specimen(const Scene& scene) {
+  if (!scene.sample_in) return false;
+  if (scene.sample.type == SampleType::Grains) return true;
+  if (scene.sample.type != SampleType::Section || !scene.optics.relief) return false;
+  if (scene.mode != ViewMode::Ortho || scene.bertrand_in || scene.analyzer_in) return false;
+  // An EBSD map shown with opaque non-indexed points has a medium the slab tracer cannot absorb
+  // in: it keeps the flat image.
+  return !load_scene_section(scene)->has_opaque_domain;
+}
+
+RenderImage render_traced_specimen(const Scene& scene, const std::function<void(const RenderImage&)>& progress,
+                                   const std::atomic<bool>* cancel) {
+  if (!is_traced_specimen(scene)) throw std::invalid_argument("render_traced_specimen: not a traced specimen");
+  if (scene.sample.type == SampleType::Grains) return render_grain_mount(scene, progress, cancel);
+  const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
+  const std::string report = "thin section slab: backward-traced refraction (Embree, Fresnel), plane-polarized light";
+  RenderImage img = render_plane_light(
+      *slab, plane_light_options(scene),
+      [&](const RenderImage& i) {
+        if (!progress) return;
+        RenderImage copy = i;
+        copy.model_report = report;
+        progress(copy);
+      },
+      nullptr, cancel);
+  img.model_report = report;
+  return img;
+}
+
+}  // namespace pmsim

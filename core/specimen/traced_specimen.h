@@ -1,0 +1,20 @@
+#pragma once
+// Which scenes are rendered by tracing light through a refracting 3-D specimen (issue 12), and
+// the one entry that renders them: grain mounts (sample.type = grains) always; thin sections in
+// the orthoscopic view with the analyzer out and optics.relief on (plane light: relief, outlines,
+// cleavage cracks, focus and the aperture diaphragm). Everything else — the analyzer in, the
+// conoscopic view, optics.relief = off — is the progressive renderer's (core/render), unchanged.
+#include <atomic>
+#include <functional>
+
+#include "core/microscope/scene.h"
+#include "core/render/render_image.h"
+
+namespace pmsim {
+
+bool is_traced_specimen(const Scene& scene);
+// `cancel` (optional): as render_plane_light's. Throws for a scene is_traced_specimen refuses.
+RenderImage render_traced_specimen(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
+                                   const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace pmsim
