@@ -197,6 +197,19 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       const double incident = field_power(b);
       const Crystal* to_crystal = scene.crystal_of(to);
       const Crystal* from_crystal = scene.crystal_of(from);
+      // Both modes go on: the second waits on the stack, or, past the cap on leaves, the weaker is
+      // dropped and its power counted.
+      const auto follow_both = [&](Branch(&m)[2]) {
+        if (branches < kMaxJonesLeaves && top < int(stack.size())) {
+          ++branches;
+          stack[top++] = m[1];
+          b = m[0];
+        } else {
+          const int keep = field_power(m[0]) >= field_power(m[1]) ? 0 : 1;
+          if (counters) counters->capped_power += field_power(m[1 - keep]);
+          b = m[keep];
+        }
+      };
       const auto offset = [&](const glm::dvec3& dir) {
         b.surface = hit.point;
         return hit.point + (glm::dot(dir, hit.normal) > 0.0 ? 1e-3 : -1e-3) * hit.normal;
@@ -221,15 +234,7 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
           m[k].crystal_mode = true;
           for (int j = 0; j < starts; ++j) m[k].E[j] = dot(m[k].mode, b.E[j]) * real_vec(m[k].mode);
         }
-        if (branches < kMaxJonesLeaves && top < int(stack.size())) {
-          ++branches;
-          stack[top++] = m[1];
-          b = m[0];
-        } else {
-          const int keep = field_power(m[0]) >= field_power(m[1]) ? 0 : 1;
-          if (counters) counters->capped_power += field_power(m[1 - keep]);
-          b = m[keep];
-        }
+        follow_both(m);
       };
 
       if (!to_crystal) {
@@ -317,15 +322,7 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
         continue;
       }
       if (ok[0] && ok[1]) {
-        if (branches < kMaxJonesLeaves && top < int(stack.size())) {
-          ++branches;
-          stack[top++] = m[1];
-          b = m[0];
-        } else {
-          const int keep = field_power(m[0]) >= field_power(m[1]) ? 0 : 1;
-          if (counters) counters->capped_power += field_power(m[1 - keep]);
-          b = m[keep];
-        }
+        follow_both(m);
       } else {
         b = ok[0] ? m[0] : m[1];
       }

@@ -23,7 +23,9 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   if (!is_traced_specimen(scene)) throw std::invalid_argument("render_traced_specimen: not a traced specimen");
   if (scene.sample.type == SampleType::Grains) return render_grain_mount(scene, progress, cancel);
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
-  const std::string report = "thin section slab: backward-traced refraction (Embree, Fresnel), plane-polarized light";
+  const std::string report =
+      "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), plane-polarized "
+      "light";
   RenderImage img = render_plane_light(
       *slab, plane_light_options(scene),
       [&](const RenderImage& i) {
