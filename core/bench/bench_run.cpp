@@ -12,7 +12,6 @@
 
 #include "core/bench/bench_scenes.h"
 #include "core/bench/bench_strategy.h"
-#include "core/bench/crossed_polar_grain_bench.h"
 #include "core/bench/grain_mount_bench.h"
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
@@ -120,18 +119,19 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
     }
   }
   // The refracting specimen's rows (issue 12), under the same filters as the scenes above.
-  if (std::string("grain-mount-garnet-1.54").find(opt.scene_filter) != std::string::npos &&
-      std::string("plane-light-reference plane-light-preview plane-light-first-pass plane-light-64spp plane-light-256spp-or-tolerance-1").find(opt.strategy_filter) !=
-          std::string::npos)
-    for (BenchRow& row : grain_mount_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
-  if (std::string("grain-mount-calcite-crossed").find(opt.scene_filter) != std::string::npos &&
-      std::string("crossed-polars-reference-half crossed-polars-first-pass crossed-polars-64spp")
-              .find(opt.strategy_filter) != std::string::npos)
-    for (BenchRow& row : crossed_polar_grain_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
-  if (std::string("section-granite-plane-light").find(opt.scene_filter) != std::string::npos &&
-      std::string("plane-light-reference plane-light-preview plane-light-first-pass plane-light-64spp plane-light-256spp-or-tolerance-1").find(opt.strategy_filter) !=
-          std::string::npos)
-    for (BenchRow& row : section_relief_bench_rows(opt.size, log)) rep.rows.push_back(std::move(row));
+  const auto specimen_selected = [&](const std::string& scene, const std::string& polars) {
+    if (scene.find(opt.scene_filter) == std::string::npos) return false;
+    for (const std::string& suffix : specimen_bench_strategy_suffixes())
+      if ((polars + "-" + suffix).find(opt.strategy_filter) != std::string::npos) return true;
+    return false;
+  };
+  const auto add_rows = [&](std::vector<BenchRow> rows) {
+    for (BenchRow& row : rows) rep.rows.push_back(std::move(row));
+  };
+  if (specimen_selected("grain-mount-garnet-1.54", "plane-light")) add_rows(grain_mount_bench_rows(opt.size, log));
+  if (specimen_selected("grain-mount-calcite-crossed", "crossed-polars"))
+    add_rows(crossed_polar_grain_bench_rows(opt.size, log));
+  if (specimen_selected("section-granite-plane-light", "plane-light")) add_rows(section_relief_bench_rows(opt.size, log));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

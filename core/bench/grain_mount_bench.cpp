@@ -1,6 +1,8 @@
 #include "core/bench/grain_mount_bench.h"
 
+#include <algorithm>
 #include <chrono>
+#include <string>
 #include <cstdio>
 
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
@@ -13,9 +15,11 @@ namespace pmsim {
 
 namespace {
 
-// The rows of one refracting specimen in plane light, rendered as the product renders it.
-std::vector<BenchRow> plane_light_rows(const std::string& name, const Scene& scene, const SpecimenScene& specimen,
-                                       double build_ms, int size, std::ostream& log) {
+// The rows of one refracting specimen, rendered as the product renders it; `prefix` names the
+// polars ("plane-light", "crossed-polars") in the strategy names.
+std::vector<BenchRow> specimen_rows(const std::string& name, const std::string& prefix, const Scene& scene,
+                                    const SpecimenScene& specimen, double build_ms, std::ostream& log) {
+  const int size = scene.render.width;
   // The reference: 1024 paths a pixel with another seed (its own split-half estimate is logged
   // and recorded on its row), so the rows below are measured against an independent image.
   PlaneLightOptions ref_opt = plane_light_options(scene);
@@ -51,7 +55,7 @@ std::vector<BenchRow> plane_light_rows(const std::string& name, const Scene& sce
         << ", estimate " << img.error_estimate.value_or(-1.0) << "\n";
     rows.push_back(row);
   };
-  add("plane-light-reference", ref, ref_cpu_ms, "bench-side", "the reference against itself (0 by definition)");
+  add(prefix + "-reference", ref, ref_cpu_ms, "bench-side", "the reference against itself (0 by definition)");
   // The product's progressive render as the app runs it (preview, passes, stop at a split-half
   // estimate below 1), capped at 256 paths a pixel; the image at 64 paths is taken on the way.
   PlaneLightOptions opt = plane_light_options(scene);
@@ -63,34 +67,61 @@ std::vector<BenchRow> plane_light_rows(const std::string& name, const Scene& sce
   const RenderImage done = render_plane_light(specimen, opt, [&](const RenderImage& img) {
     if (img.passes == 1) preview = img, preview_cpu_ms = process_cpu_ms() - cpu0;
     if (img.passes == 2) first = img, first_cpu_ms = process_cpu_ms() - cpu0;
-    if (img.samples_per_pixel == 64) at64 = img, at64_cpu_ms = process_cpu_ms() - cpu0;
+    // The first image with 64 paths a pixel or more (a crossed-polar pass traces 18).
+    if (at64.passes == 0 && img.samples_per_pixel >= 64) at64 = img, at64_cpu_ms = process_cpu_ms() - cpu0;
   });
   const double done_cpu_ms = process_cpu_ms() - cpu0;
-  add("plane-light-preview", preview, preview_cpu_ms, "product", "1/4-size preview, one path a pixel");
-  add("plane-light-first-pass", first, first_cpu_ms, "product", done.model_report);
-  add("plane-light-64spp", at64, at64_cpu_ms, "product", done.model_report);
-  add("plane-light-256spp-or-tolerance-1", done, done_cpu_ms, "product",
+  add(prefix + "-preview", preview, preview_cpu_ms, "product", "1/4-size preview, one path a pixel");
+  add(prefix + "-first-pass", first, first_cpu_ms, "product", done.model_report);
+  add(prefix + "-64spp", at64, at64_cpu_ms, "product", done.model_report);
+  add(prefix + "-256spp-or-tolerance-1", done, done_cpu_ms, "product",
       done.model_report + (done.samples_per_pixel < 256 ? ", stopped at estimate < 1" : ", estimate not below 1"));
   return rows;
 }
 
-}  // namespace
-
-std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
-  Scene scene;
-  scene.sample.type = SampleType::Grains;
-  scene.sample.mineral = "garnet";
-  scene.sample.medium_index = 1.54;
-  scene.focus_um = 5.0;
-  scene.render.width = scene.render.height = size;
-  const std::string name = "grain-mount-garnet-1.54";
+// Times the build of a specimen and logs it (`what` counts its parts), then its rows.
+template <class Build, class Count>
+std::vector<BenchRow> timed_specimen_rows(const std::string& name, const std::string& prefix, const Scene& scene,
+                                          Build build, Count count, std::ostream& log) {
   log << "scene " << name << ": specimen… " << std::flush;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto specimen = grain_mount_specimen(scene);
+  const auto specimen = build(scene);
   const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  log << specimen->fragment_count() << " fragments, " << build_ms << " ms; reference… " << std::flush;
+  log << count(*specimen) << ", " << build_ms << " ms; reference… " << std::flush;
+  return specimen_rows(name, prefix, scene, *specimen, build_ms, log);
+}
 
-  return plane_light_rows(name, scene, *specimen, build_ms, size, log);
+Scene grain_mount_scene(const std::string& mineral, int size) {
+  Scene scene;
+  scene.sample.type = SampleType::Grains;
+  scene.sample.mineral = mineral;
+  scene.sample.medium_index = 1.54;
+  scene.render.width = scene.render.height = size;
+  return scene;
+}
+
+std::string fragments(const SpecimenScene& s) { return std::to_string(s.fragment_count()) + " fragments"; }
+
+}  // namespace
+
+const std::vector<std::string>& specimen_bench_strategy_suffixes() {
+  static const std::vector<std::string> suffixes = {"reference", "preview", "first-pass", "64spp",
+                                                    "256spp-or-tolerance-1"};
+  return suffixes;
+}
+
+std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log) {
+  Scene scene = grain_mount_scene("garnet", size);
+  scene.focus_um = 5.0;
+  scene.analyzer_in = false;  // plane light (a default Scene has the analyzer in)
+  return timed_specimen_rows("grain-mount-garnet-1.54", "plane-light", scene, grain_mount_specimen, fragments, log);
+}
+
+std::vector<BenchRow> crossed_polar_grain_bench_rows(int size, std::ostream& log) {
+  // Crossed polars: polarizer 0°, analyzer 90° (the Scene's defaults); at most 256² (32 bands).
+  const Scene scene = grain_mount_scene("calcite", std::min(size, 256));
+  return timed_specimen_rows("grain-mount-calcite-crossed", "crossed-polars", scene, grain_mount_specimen, fragments,
+                             log);
 }
 
 std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
@@ -99,13 +130,9 @@ std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
   scene.sample.section = "granite";
   scene.analyzer_in = false;
   scene.render.width = scene.render.height = size;
-  const std::string name = "section-granite-plane-light";
-  log << "scene " << name << ": slab… " << std::flush;
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto slab = section_slab(scene);
-  const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  log << slab->triangle_count() << " triangles, " << build_ms << " ms; reference… " << std::flush;
-  return plane_light_rows(name, scene, *slab, build_ms, size, log);
+  return timed_specimen_rows(
+      "section-granite-plane-light", "plane-light", scene, section_slab,
+      [](const SpecimenScene& s) { return std::to_string(s.triangle_count()) + " triangles"; }, log);
 }
 
 }  // namespace pmsim

@@ -6,6 +6,7 @@
 // (wall and CPU) and mean CIEDE2000 against an independent 1024-path reference (another seed;
 // its own split-half estimate on its row).
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "core/bench/bench_run.h"
@@ -13,9 +14,14 @@
 namespace pmsim {
 
 std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log);
+// Crossed polars on a grain mount (the polarization-exact tracer): calcite fragments in a liquid
+// of 1.54, polarizer 0°, analyzer 90°, at min(size, 256)² pixels, the same rows as above.
+std::vector<BenchRow> crossed_polar_grain_bench_rows(int size, std::ostream& log);
 // The granite thin section at 10× in plane light (analyzer out, optics.relief on): the slab traced
 // as above, its build time reported alongside (not in the rows' times: a polarizer or focus
 // change reuses the cached slab).
 std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log);
+// The rows' strategy names are "<polars>-<suffix>", polars "plane-light" or "crossed-polars".
+const std::vector<std::string>& specimen_bench_strategy_suffixes();
 
 }  // namespace pmsim
