@@ -1,13 +1,13 @@
 #include "core/specimen/grain_mount_render.h"
 
 #include <algorithm>
-#include <mutex>
 #include <string>
 
 #include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/view_geometry.h"
+#include "core/specimen/last_built.h"
 
 namespace pmsim {
 
@@ -68,23 +68,14 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
 
 namespace {
 
-// The last mount built, by what it depends on (mineral, liquid): a focus, stage, aperture or
-// polarizer change in the app restarts the image without rebuilding ~10⁶ triangles (seconds).
-// A crystal given by its indices is rebuilt every time (no key for it here).
+// The last mount built, by what it depends on (mineral, liquid). A crystal given by its indices
+// is rebuilt every time (no key for it here).
 std::shared_ptr<const SpecimenScene> cached_specimen(const Scene& scene) {
-  static std::mutex mu;
-  static std::string key;
-  static std::shared_ptr<const SpecimenScene> last;
+  static LastBuilt<SpecimenScene> cache;
   if (scene.sample.crystal) return grain_mount_specimen(scene);
-  const std::string k = scene.sample.mineral + "|" +
-                        std::to_string(scene.sample.medium_index.value_or(kDefaultGrainMountIndex));
-  std::lock_guard<std::mutex> lock(mu);
-  if (!last || key != k) {
-    last.reset();  // free the old mount before building the new one
-    last = grain_mount_specimen(scene);
-    key = k;
-  }
-  return last;
+  const std::string key = scene.sample.mineral + "|" +
+                          std::to_string(scene.sample.medium_index.value_or(kDefaultGrainMountIndex));
+  return cache.get(key, [&] { return grain_mount_specimen(scene); });
 }
 
 }  // namespace

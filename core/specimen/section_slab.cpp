@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,6 +15,7 @@
 #include "core/base/units.h"
 #include "core/microscope/map_section.h"
 #include "core/microscope/view_geometry.h"
+#include "core/specimen/last_built.h"
 #include "core/specimen/specimen_random.h"
 
 namespace pmsim {
@@ -358,18 +358,8 @@ std::shared_ptr<const SpecimenScene> section_slab(const Scene& scene) {
       << o.spacing_um << '|' << o.thickness_um << '|' << scene.sample.medium << '|'
       << scene.sample.medium_index.value_or(0.0);
   // One slab kept: the app looks at one field at a time; a stage move rebuilds.
-  static std::mutex mutex;
-  static std::string cached_key;
-  static std::shared_ptr<const SpecimenScene> cached;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (cached && cached_key == key.str()) return cached;
-  }
-  std::shared_ptr<const SpecimenScene> slab = build_section_slab(load_scene_section(scene), medium, o);
-  std::lock_guard<std::mutex> lock(mutex);
-  cached_key = key.str();
-  cached = slab;
-  return slab;
+  static LastBuilt<SpecimenScene> cache;
+  return cache.get(key.str(), [&] { return build_section_slab(load_scene_section(scene), medium, o); });
 }
 
 }  // namespace pmsim
