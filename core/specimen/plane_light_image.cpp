@@ -17,6 +17,7 @@
 #include "core/base/units.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "core/specimen/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
 
 namespace pmsim {
@@ -74,24 +75,6 @@ double sample_path(const SpecimenScene& scene, const Geometry& g, const glm::dve
   return std::isfinite(I) ? I : 0.0;
 }
 
-
-// The R-sequence step in 5 dimensions (point jx, jy, pupil u1, u2, wavelength jitter): α_j = φ⁻ʲ
-// with φ the real root of x⁶ = x + 1 (M. Roberts, "The unreasonable effectiveness of
-// quasirandom sequences", 2018).
-constexpr double kPhi5 = 1.1673039782614187;
-struct SampleDims {
-  double v[5];
-};
-SampleDims kronecker(const SampleDims& shift, int k) {
-  SampleDims s;
-  double a = 1.0;
-  for (int j = 0; j < 5; ++j) {
-    a /= kPhi5;
-    const double x = shift.v[j] + a * k;
-    s.v[j] = x - std::floor(x);
-  }
-  return s;
-}
 
 // The pupil-sampling shift of (pixel, stratum): fixed for the render, so that pass k takes the
 // k-th point of one sequence.
@@ -178,6 +161,12 @@ std::vector<std::uint8_t> pixels_near_fragments(const SpecimenScene& scene, int 
 
 }  // namespace
 
+double objective_focus_z_air_um(const SpecimenScene& scene, double focus_um) {
+  const SpecimenLayers& L = scene.layers();
+  return scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLambdaD_nm) -
+         (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLambdaD_nm) + focus_um;
+}
+
 RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& o,
                                const std::function<void(const RenderImage&)>& progress,
                                InterfaceCounters* counters, const std::atomic<bool>* cancel) {
@@ -194,24 +183,11 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   // one of every G neighbours in turn.
   const int bands_per_pass = mono ? 1 : std::min(nb, analyzer_in ? 8 : 1);
   const int G = std::max(1, nb / bands_per_pass);
-  // Band weights W_b = ∫_band w(λ) dλ with w the observer × illuminant weight (Y = 1 for T ≡ 1),
-  // by the midpoint rule at ≤ 1 nm steps that tile the band exactly (a band of 12.5 nm is 13 steps
-  // of 0.96 nm: 1 nm steps from its start would cover 12 of its 12.5 nm, and the bands' weights
-  // would sum to Y = 0.96).
-  std::vector<glm::dvec3> W(nb, glm::dvec3(0.0));
-  std::vector<double> band_lo(nb), band_width(nb);
-  const double span = kVisibleMaxNm - kVisibleMinNm;
-  glm::dvec3 w_sum(0.0);
-  for (int b = 0; b < nb; ++b) {
-    band_lo[b] = kVisibleMinNm + span * b / nb;
-    band_width[b] = span / nb;
-    if (!mono) {
-      const int steps = int(std::ceil(band_width[b] - 1e-9));
-      const double dl = band_width[b] / steps;
-      for (int k = 0; k < steps; ++k) W[b] += dl * observer_weight(o.illuminant, band_lo[b] + (k + 0.5) * dl);
-    }
-    w_sum += W[b];
-  }
+  const SpectralBands bands = spectral_bands(nb, o.illuminant, !mono);
+  const std::vector<glm::dvec3>& W = bands.weight;
+  const std::vector<double>& band_lo = bands.lo_nm;
+  const std::vector<double>& band_width = bands.width_nm;
+  const glm::dvec3 w_sum = bands.sum;
   const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
   // The control variate's wavelength: the photopic peak (mono: the line itself, traced once).
   const double lambda_ref = mono ? o.single_wavelength_nm : 555.0;
@@ -223,8 +199,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
   g.a_in = (g.r_in / g.na) * (g.r_in / g.na);
   g.annulus = g.r_in < g.na;
   const SpecimenLayers& L = scene.layers();
-  g.z_air = scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLambdaD_nm) -
-            (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLambdaD_nm) + o.focus_um;
+  g.z_air = objective_focus_z_air_um(scene, o.focus_um);
   g.z_start = scene.cover_top_z_um() + 10.0 + std::max(0.0, g.z_air - scene.cover_top_z_um());
   g.c = std::cos(-o.stage_rad);
   g.s = std::sin(-o.stage_rad);

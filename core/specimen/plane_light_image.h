@@ -115,6 +115,11 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
                                const std::function<void(const RenderImage&)>& progress = nullptr,
                                InterfaceCounters* counters = nullptr, const std::atomic<bool>* cancel = nullptr);
 
+// The plane (z, µm) in the air above the cover glass where the objective's cone converges, focused
+// at focus_um: the specimen's mid-plane seen through cover glass and liquid at their apparent
+// depths (n at 589.26 nm), raised by focus_um (see the top of this file).
+double objective_focus_z_air_um(const SpecimenScene& scene, double focus_um);
+
 // The effective condenser NA for an aperture setting (0 → kStoppedDownApertureNa).
 inline double effective_condenser_na(double aperture_na) {
   return aperture_na > 0.0 ? aperture_na : kStoppedDownApertureNa;

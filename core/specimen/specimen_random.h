@@ -2,6 +2,7 @@
 // The one random number source of the specimen module: SplitMix64 (Steele, Lea, Flood, "Fast
 // splittable pseudorandom number generators", OOPSLA 2014), stateless per call so that a pixel's
 // samples depend on (pixel, sample) only, not on the thread that draws them.
+#include <cmath>
 #include <cstdint>
 
 namespace pmsim {
@@ -22,5 +23,24 @@ struct SpecimenRandom {
     return double(state >> 11) * 0x1.0p-53;
   }
 };
+
+// The R-sequence step in 5 dimensions (point jx, jy, pupil or cone u1, u2, wavelength jitter):
+// α_j = φ⁻ʲ with φ the real root of x⁶ = x + 1 (M. Roberts, "The unreasonable effectiveness of
+// quasirandom sequences", 2018). Shifted by a random point (Cranley–Patterson rotation) it stays
+// unbiased and is stratified over k.
+constexpr double kPhi5 = 1.1673039782614187;
+struct SampleDims {
+  double v[5];
+};
+inline SampleDims kronecker(const SampleDims& shift, int k) {
+  SampleDims s;
+  double a = 1.0;
+  for (int j = 0; j < 5; ++j) {
+    a /= kPhi5;
+    const double x = shift.v[j] + a * k;
+    s.v[j] = x - std::floor(x);
+  }
+  return s;
+}
 
 }  // namespace pmsim
