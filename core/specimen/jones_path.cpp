@@ -144,6 +144,19 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       }
       if (!scene.intersect(b.origin, b.dir, 0.0, hit)) {
         ++out.leaves;
+        if (q.forward) {
+          const double sin_exit = std::sqrt(b.dir.x * b.dir.x + b.dir.y * b.dir.y);
+          if (b.medium == kSpecimenAir && b.dir.z > 0.0 && sin_exit <= q.objective_sin_max &&
+              out.n_exits < kMaxJonesLeaves) {
+            ++out.lit;
+            JonesExit& e = out.exits[std::size_t(out.n_exits++)];
+            e.point = b.events > 0 ? b.surface : b.origin;
+            e.dir = b.dir;
+            e.power = power(b.E[0]);
+            out.power[0] += e.power;
+          }
+          break;
+        }
         const double sin_exit = std::sqrt(b.dir.x * b.dir.x + b.dir.y * b.dir.y);
         if (b.medium == kSpecimenAir && b.dir.z < 0.0 && sin_exit <= q.condenser_sin_max) {
           ++out.lit;

@@ -41,6 +41,8 @@
 // the forward one, so ⟨p|J_forward|a⟩ is the bilinear product p·(J_backward a): tracing backward
 // from the analyzer's vibration a gives the amplitude the polarizer's light reaches it with.
 
+#include <array>
+
 #include <glm/vec3.hpp>
 
 #include "core/specimen/specimen_scene.h"
@@ -61,6 +63,19 @@ struct JonesPathRequest {
   glm::dvec3 polarizer{1.0, 0.0, 0.0};        // the polarizer's vibration (lab / specimen frame)
   double condenser_sin_max = 1.0;             // a branch is lit if it leaves with sinθ ≤ this
   int max_interfaces = 64;                    // per branch
+  // Forward (core/specimen/forward_plane_light.h): the path starts in the air below the slide
+  // going up with `start_vibration` (the polarizer's; starts = 1), and every branch that leaves
+  // the cover glass upward with sinθ ≤ objective_sin_max is kept as an exit with its own point,
+  // direction and power |E|² (analyzer out: the camera adds the branches' intensities).
+  bool forward = false;
+  double objective_sin_max = 1.0;
+};
+
+// A forward path's branch leaving the cover glass toward the objective.
+struct JonesExit {
+  glm::dvec3 point{0.0};  // on the cover glass's top face
+  glm::dvec3 dir{0.0};    // unit, up
+  double power = 0.0;     // |E|², of the unit power that entered
 };
 
 struct JonesPath {
@@ -69,6 +84,8 @@ struct JonesPath {
   int leaves = 0;                       // branches that ended (lit or not)
   int lit = 0;                          // branches that left below inside the condenser's cone
   int interfaces = 0;                   // Fresnel events over all branches
+  std::array<JonesExit, kMaxJonesLeaves> exits{};  // forward: the branches the objective collects
+  int n_exits = 0;
   double intensity(int starts) const {
     return starts > 1 ? power[0] + power[1] : power[0];
   }
