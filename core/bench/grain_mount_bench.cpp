@@ -1,12 +1,15 @@
 #include "core/bench/grain_mount_bench.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <string>
 #include <cstdio>
 
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
 #include "core/bench/image_error.h"
+#include "core/specimen/forward_plane_light.h"
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_slab.h"
 #include "core/spectrum/cie.h"
@@ -17,8 +20,13 @@ namespace {
 
 // The rows of one refracting specimen, rendered as the product renders it; `prefix` names the
 // polars ("plane-light", "crossed-polars") in the strategy names.
+using Renderer = RenderImage (*)(const SpecimenScene&, const PlaneLightOptions&,
+                                 const std::function<void(const RenderImage&)>&, InterfaceCounters*,
+                                 const std::atomic<bool>*);
+
 std::vector<BenchRow> specimen_rows(const std::string& name, const std::string& prefix, const Scene& scene,
-                                    const SpecimenScene& specimen, double build_ms, std::ostream& log) {
+                                    const SpecimenScene& specimen, double build_ms, std::ostream& log,
+                                    Renderer render = render_plane_light) {
   const int size = scene.render.width;
   // The reference: 1024 paths a pixel with another seed (its own split-half estimate is logged
   // and recorded on its row), so the rows below are measured against an independent image.
@@ -28,7 +36,7 @@ std::vector<BenchRow> specimen_rows(const std::string& name, const std::string& 
   ref_opt.preview_factor = 0;
   ref_opt.seed = 2;
   const double ref_cpu0 = process_cpu_ms();
-  const RenderImage ref = render_plane_light(specimen, ref_opt);
+  const RenderImage ref = render(specimen, ref_opt, nullptr, nullptr, nullptr);
   const double ref_cpu_ms = process_cpu_ms() - ref_cpu0;
   log << ref.time_ms << " ms, its split-half estimate ΔE00 " << ref.error_estimate.value_or(-1.0) << "\n";
   const glm::dvec3 white = illuminant_white_xyz(scene.illuminant);
@@ -64,13 +72,15 @@ std::vector<BenchRow> specimen_rows(const std::string& name, const std::string& 
   RenderImage preview, first, at64;
   double preview_cpu_ms = 0.0, first_cpu_ms = 0.0, at64_cpu_ms = 0.0;
   const double cpu0 = process_cpu_ms();
-  const RenderImage done = render_plane_light(specimen, opt, [&](const RenderImage& img) {
+  const RenderImage done = render(specimen, opt, [&](const RenderImage& img) {
     if (img.passes == 1) preview = img, preview_cpu_ms = process_cpu_ms() - cpu0;
     if (img.passes == 2) first = img, first_cpu_ms = process_cpu_ms() - cpu0;
     // The first image with 64 paths a pixel or more (a crossed-polar pass traces 18).
     if (at64.passes == 0 && img.samples_per_pixel >= 64) at64 = img, at64_cpu_ms = process_cpu_ms() - cpu0;
-  });
+  }, nullptr, nullptr);
   const double done_cpu_ms = process_cpu_ms() - cpu0;
+  // Stopped at the tolerance before 64 paths: the 64-path image is the final one.
+  if (at64.passes == 0) at64 = done, at64_cpu_ms = done_cpu_ms;
   add(prefix + "-preview", preview, preview_cpu_ms, "product", "1/4-size preview, one path a pixel");
   add(prefix + "-first-pass", first, first_cpu_ms, "product", done.model_report);
   add(prefix + "-64spp", at64, at64_cpu_ms, "product", done.model_report);
@@ -82,13 +92,14 @@ std::vector<BenchRow> specimen_rows(const std::string& name, const std::string& 
 // Times the build of a specimen and logs it (`what` counts its parts), then its rows.
 template <class Build, class Count>
 std::vector<BenchRow> timed_specimen_rows(const std::string& name, const std::string& prefix, const Scene& scene,
-                                          Build build, Count count, std::ostream& log) {
+                                          Build build, Count count, std::ostream& log,
+                                          Renderer render = render_plane_light) {
   log << "scene " << name << ": specimen… " << std::flush;
   const auto t0 = std::chrono::steady_clock::now();
   const auto specimen = build(scene);
   const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   log << count(*specimen) << ", " << build_ms << " ms; reference… " << std::flush;
-  return specimen_rows(name, prefix, scene, *specimen, build_ms, log);
+  return specimen_rows(name, prefix, scene, *specimen, build_ms, log, render);
 }
 
 Scene grain_mount_scene(const std::string& mineral, int size) {
@@ -132,7 +143,8 @@ std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
   scene.render.width = scene.render.height = size;
   return timed_specimen_rows(
       "section-granite-plane-light", "plane-light", scene, section_slab,
-      [](const SpecimenScene& s) { return std::to_string(s.triangle_count()) + " triangles"; }, log);
+      [](const SpecimenScene& s) { return std::to_string(s.triangle_count()) + " triangles"; }, log,
+      render_plane_light_forward);
 }
 
 }  // namespace pmsim

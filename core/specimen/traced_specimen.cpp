@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/microscope/map_section.h"
+#include "core/specimen/forward_plane_light.h"
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_slab.h"
 
@@ -23,10 +24,12 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   if (!is_traced_specimen(scene)) throw std::invalid_argument("render_traced_specimen: not a traced specimen");
   if (scene.sample.type == SampleType::Grains) return render_grain_mount(scene, progress, cancel);
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
+  // Plane light is traced forward from the condenser's cone: it converges far faster than
+  // backward (forward_plane_light.h).
   const std::string report =
-      "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), plane-polarized "
-      "light";
-  RenderImage img = render_plane_light(
+      "thin section slab: forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
+      "splitting, tent splats), plane-polarized light";
+  RenderImage img = render_plane_light_forward(
       *slab, plane_light_options(scene),
       [&](const RenderImage& i) {
         if (!progress) return;
