@@ -217,6 +217,41 @@ TEST(SectionBeckeProbe, MediumIndexFlipsTheLineAtACrack) {
   }
 }
 
+// A boundary of orientation alone: a simple twin of a uniaxial grain (n_ω 1.658, n_ε 1.486)
+// whose twin individual has its optic axis turned 90° about the section normal, composition
+// plane x = 0. For light vibrating along x the host (optic axis along x) offers n_ε, the twin
+// (axis along y) n_ω: the line moves into the twin; with the polarizer at 90° the two swap.
+TEST(SectionBeckeProbe, TwinBoundaryOfOneMineralFollowsTheOrientations) {
+  const pmsim::Crystal c = pmsim::Crystal::uniaxial_constant("uniaxial", 1.658, 1.486);
+  const glm::dmat3 host(glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0));  // Z along x
+  const glm::dmat3 twin(glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0));   // Z along y
+  auto map = std::make_shared<SectionMap>();
+  map->width_mm = map->height_mm = 0.12;
+  pmsim::SectionGrain g = grain(&c, {0.0, 0.0}, 0.12, host);
+  g.twinned = true;
+  g.twin_normal = {1.0, 0.0};  // individual 2 where (p − centre)·normal < 0: west of x = 0
+  g.twin_orientation = g.zones[0].twin_orientation = twin;
+  map->grains.push_back(g);
+  map->finish();
+  for (const double pol : {0.0, 90.0}) {
+    const pmsim::Scene scene = section_scene(pol);
+    const pmsim::SectionBeckeProbe p = probe_at(*map, scene, {-10.0, 0.0});
+    ASSERT_TRUE(p.found);
+    EXPECT_EQ(p.here.grain, 1);
+    EXPECT_EQ(p.there.grain, 1);
+    EXPECT_EQ(p.here.twin, 1);
+    EXPECT_EQ(p.there.twin, 0);
+    EXPECT_NEAR(p.distance_um, 10.0, 1e-3);
+    EXPECT_NEAR(p.here.n, pol == 0.0 ? 1.658 : 1.486, 1e-12);
+    EXPECT_NEAR(p.there.n, pol == 0.0 ? 1.486 : 1.658, 1e-12);
+    EXPECT_EQ(p.moves_into, pol == 0.0 ? BeckeMovesInto::Here : BeckeMovesInto::There);
+    const std::string text = pmsim::describe_section_becke_line(p);
+    std::printf("polarizer %.0f: %s\n", pol, text.c_str());
+    EXPECT_NE(text.find("uniaxial (grain 1, twin individual 2)"), std::string::npos) << text;
+    EXPECT_NE(text.find("uniaxial (grain 1, twin individual 1)"), std::string::npos) << text;
+  }
+}
+
 // A birefringent grain: calcite-like (n_ω 1.658, n_ε 1.486), optic axis Z in the x–z plane 30°
 // above x. Light vibrating along x makes 30° with the optic axis: 1/n'² = cos²30°/n_ε² +
 // sin²30°/n_ω² (the indicatrix's radius; Nesse 2012 §7); along y, ⟂ the axis: n_ω. Turning the

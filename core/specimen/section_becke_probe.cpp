@@ -45,6 +45,11 @@ struct SlabMedia {
     }
     s.grain = map.grain_label(s.domain);
     s.mineral = map.mineral_of_domain(s.domain);
+    const SectionGrain& g = map.grain_by_label(s.grain);
+    const int per_zone = g.twinned ? 2 : 1, k = s.domain - g.first_domain;
+    s.zone = k / per_zone;
+    s.zone_count = int(g.zones.size());
+    s.twin = g.twinned ? k % per_zone : -1;
     s.n = vibration_index(*map.crystal_of_domain(s.domain), map.orientation_of_domain(s.domain), kBeckeWavelengthNm,
                           vibration);
     return s;
@@ -104,7 +109,10 @@ SectionBeckeProbe probe_section_becke_line(const Scene& scene, double x, double 
 
 std::string section_becke_side_name(const SectionBeckeSide& s) {
   if (s.is_medium()) return "mounting medium";
-  return s.mineral + " (grain " + std::to_string(s.grain) + ")";
+  std::string name = s.mineral + " (grain " + std::to_string(s.grain);
+  if (s.zone_count > 1) name += ", zone " + std::to_string(s.zone + 1) + " of " + std::to_string(s.zone_count);
+  if (s.twin >= 0) name += ", twin individual " + std::to_string(s.twin + 1);
+  return name + ")";
 }
 
 std::string describe_section_becke_line(const SectionBeckeProbe& p) {

@@ -32,6 +32,9 @@ struct SectionBeckeSide {
   int domain = SectionMap::kSlideDomain;  // the section map's optical domain (kMediumDomain on a crack)
   int grain = 0;                          // SectionMap::grain_label: 0 for the mounting medium, else k ≥ 1
   std::string mineral;                    // the domain's mineral; empty for the mounting medium
+  // Which part of the grain (a boundary inside one grain is between zones or twin individuals):
+  // zone index of zone_count (inner to outer), twin individual 0 or 1 (−1: untwinned grain).
+  int zone = 0, zone_count = 1, twin = -1;
   double n = 0.0;                         // n' along the polarizer at kBeckeWavelengthNm (n_D of the medium)
   bool is_medium() const { return grain == 0; }
 };
@@ -62,7 +65,8 @@ SectionBeckeProbe probe_section_becke_line(const SectionMap& map, const Scene& s
 // The same for the scene's own section (loaded once, cached).
 SectionBeckeProbe probe_section_becke_line(const Scene& scene, double x, double y);
 
-// What one side is called in the panel: "quartz (grain 4)" or "mounting medium".
+// What one side is called in the panel: "quartz (grain 4)", "plagioclase:An20 (grain 31, twin
+// individual 2)", "garnet (grain 2, zone 1 of 3)" or "mounting medium".
 std::string section_becke_side_name(const SectionBeckeSide& side);
 // One or two sentences for the teaching panel: the boundary, its two sides and what the student
 // sees when focusing up and down there.
