@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/crystal/crystal.h"
 #include "core/microscope/map_section.h"
