@@ -299,3 +299,44 @@ TEST(SectionBeckeProbe, PolarizerTurnedNinetyDegreesChangesNPrimeAsTheIndicatrix
     EXPECT_EQ(slab->liquid().n(kLambdaD), r.there.n);
   }
 }
+
+// What the probe claims is what the traced slab shows: an n = 1.60 grain's edge focused 20 µm
+// up, in mounting media of 1.54 and 1.66. The brightest 2 µm band within 14 µm of the grain's
+// edge (its trace on the slab's top; the wall leans by up to t·tan 25° = 14 µm over the slab)
+// lies inside the grain when the probe says the line moves into it, outside when it says the
+// medium — the measure tests/specimen_becke_probe_test.cpp applies to a fragment. (Focused 20 µm
+// down the bands swap sides: measured +9 → −11 µm in 1.54 and −13 → +11 µm in 1.66.)
+TEST(SectionBeckeProbe, TracedSlabShowsTheLineOnTheSideTheProbeNames) {
+  const pmsim::Crystal c = pmsim::Crystal::isotropic_constant("n160", 1.60);
+  const auto map = one_grain_section(&c);
+  for (const double nd : {1.54, 1.66}) {
+    pmsim::Scene scene = section_scene();
+    scene.sample.medium_index = nd;
+    scene.focus_um = 20.0;
+    scene.render.single_wavelength_nm = kLambdaD;
+    scene.render.spp = 32;
+    const pmsim::SectionBeckeProbe p = probe_at(*map, scene, {50.0, 0.0});
+    ASSERT_TRUE(p.found);
+    const auto slab =
+        pmsim::build_section_slab(map, pmsim::section_mounting_medium(scene), pmsim::section_slab_options(scene));
+    const pmsim::PlaneLightOptions o = pmsim::plane_light_options(scene);
+    const pmsim::RenderImage img = pmsim::render_plane_light(*slab, o);
+    double sum[14] = {}, n[14] = {};
+    for (int py = 0; py < o.height; ++py)
+      for (int px = 0; px < o.width; ++px) {
+        const double x = (px + 0.5 - 0.5 * o.width) * o.um_per_px, y = (0.5 * o.height - (py + 0.5)) * o.um_per_px;
+        const double d = 60.0 - std::max(std::abs(x), std::abs(y));  // + inside the grain
+        if (!(std::abs(d) < 14.0)) continue;
+        const int band = int(std::floor((d + 14.0) / 2.0));
+        sum[band] += img.xyz[3 * (std::size_t(py) * o.width + px) + 1];
+        n[band] += 1;
+      }
+    int peak = 0;
+    for (int b = 1; b < 14; ++b)
+      if (sum[b] / n[b] > sum[peak] / n[peak]) peak = b;
+    const double centre = -13.0 + 2.0 * peak;
+    std::printf("medium %.2f, focus +20 um: brightest band %.3f at %+.0f um from the edge; probe: %s\n", nd,
+                sum[peak] / n[peak], centre, pmsim::describe_section_becke_line(p).c_str());
+    EXPECT_EQ(centre > 0.0, p.moves_into == BeckeMovesInto::Here) << nd;
+  }
+}
