@@ -61,7 +61,8 @@ std::shared_ptr<SectionMap> two_grain_section(const pmsim::Crystal* west, const 
 }
 
 // One grain filling a 120 µm square section; beyond its edge (x or y = ±60 µm) the mounting medium.
-std::shared_ptr<SectionMap> one_grain_section(const pmsim::Crystal* c, const glm::dmat3& axes = glm::dmat3(1.0)) {
+std::shared_ptr<SectionMap> one_grain_section(const pmsim::Crystal* c,
+                                              const glm::dmat3& axes = glm::dmat3(1.0)) {
   auto m = std::make_shared<SectionMap>();
   m->name = "one grain";
   m->width_mm = m->height_mm = 0.12;
@@ -206,7 +207,8 @@ TEST(SectionBeckeProbe, MediumIndexFlipsTheLineAtACrack) {
   for (const double nd : {1.40, 1.80}) {
     scene.sample.medium_index = nd;
     const pmsim::SectionBeckeProbe p = probe_at(*map, scene, q);
-    std::printf("crack entry at (%.2f, %.2f) µm: %s\n", entry.x, entry.y, pmsim::describe_section_becke_line(p).c_str());
+    std::printf("crack entry at (%.2f, %.2f) µm: %s\n", entry.x, entry.y,
+                pmsim::describe_section_becke_line(p).c_str());
     ASSERT_TRUE(p.found);
     EXPECT_FALSE(p.here.is_medium());
     EXPECT_TRUE(p.there.is_medium());
@@ -266,7 +268,8 @@ TEST(SectionBeckeProbe, PolarizerTurnedNinetyDegreesChangesNPrimeAsTheIndicatrix
   ASSERT_NEAR(calcite.principal_indices(kLambdaD).z, ne, 0.0);  // Z is the optic axis (ε)
   const glm::dvec3 Z{std::cos(a), 0.0, std::sin(a)}, X{-std::sin(a), 0.0, std::cos(a)}, Y{0.0, -1.0, 0.0};
   const auto map = one_grain_section(&calcite, glm::dmat3(X, Y, Z));
-  const double n_x = 1.0 / std::sqrt(std::cos(a) * std::cos(a) / (ne * ne) + std::sin(a) * std::sin(a) / (no * no));
+  const double n_x =
+      1.0 / std::sqrt(std::cos(a) * std::cos(a) / (ne * ne) + std::sin(a) * std::sin(a) / (no * no));
 
   const pmsim::Scene p0 = section_scene(0.0), p90 = section_scene(90.0), s90 = section_scene(0.0, 90.0);
   // 10 µm inside the east edge (on the image's centre row: the stage turn leaves the centre).
@@ -317,14 +320,15 @@ TEST(SectionBeckeProbe, TracedSlabShowsTheLineOnTheSideTheProbeNames) {
     scene.render.spp = 32;
     const pmsim::SectionBeckeProbe p = probe_at(*map, scene, {50.0, 0.0});
     ASSERT_TRUE(p.found);
-    const auto slab =
-        pmsim::build_section_slab(map, pmsim::section_mounting_medium(scene), pmsim::section_slab_options(scene));
+    const auto slab = pmsim::build_section_slab(map, pmsim::section_mounting_medium(scene),
+                                                pmsim::section_slab_options(scene));
     const pmsim::PlaneLightOptions o = pmsim::plane_light_options(scene);
     const pmsim::RenderImage img = pmsim::render_plane_light(*slab, o);
     double sum[14] = {}, n[14] = {};
     for (int py = 0; py < o.height; ++py)
       for (int px = 0; px < o.width; ++px) {
-        const double x = (px + 0.5 - 0.5 * o.width) * o.um_per_px, y = (0.5 * o.height - (py + 0.5)) * o.um_per_px;
+        const double x = (px + 0.5 - 0.5 * o.width) * o.um_per_px,
+                     y = (0.5 * o.height - (py + 0.5)) * o.um_per_px;
         const double d = 60.0 - std::max(std::abs(x), std::abs(y));  // + inside the grain
         if (!(std::abs(d) < 14.0)) continue;
         const int band = int(std::floor((d + 14.0) / 2.0));

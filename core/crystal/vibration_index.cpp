@@ -6,7 +6,8 @@
 
 namespace pmsim {
 
-double vibration_index(const Crystal& crystal, const glm::dmat3& R, double wavelength_nm, const glm::dvec3& vibration) {
+double vibration_index(const Crystal& crystal, const glm::dmat3& R, double wavelength_nm,
+                       const glm::dvec3& vibration) {
   const glm::dvec3 n = crystal.principal_indices(wavelength_nm);
   if (crystal.symmetry() == CrystalSymmetry::Isotropic) return n.x;
   const glm::dvec3 v = glm::normalize(vibration);

@@ -13,7 +13,8 @@ namespace pmsim {
 
 struct ProbePoint {
   glm::dvec2 specimen_um{0.0};
-  glm::dvec3 vibration{1.0, 0.0, 0.0};  // unit, horizontal: the polarizer's direction turned back by the stage
+  // Unit, horizontal: the polarizer's direction turned back by the stage.
+  glm::dvec3 vibration{1.0, 0.0, 0.0};
 };
 
 // `x`, `y`: fractions of the image from its top left (as the app's probe).

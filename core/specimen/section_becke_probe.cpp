@@ -33,7 +33,9 @@ struct SlabMedia {
   IsotropicMedium mounting;
   glm::dvec3 vibration;
 
-  int domain_at(const glm::dvec2& p_um) const { return section_slab_node(map, 1e-3 * p_um, spacing_um).domain; }
+  int domain_at(const glm::dvec2& p_um) const {
+    return section_slab_node(map, 1e-3 * p_um, spacing_um).domain;
+  }
   int medium_at(const glm::dvec2& p_um) const { return of_domain[std::size_t(domain_at(p_um))]; }
 
   SectionBeckeSide side_at(const glm::dvec2& p_um) const {
@@ -50,8 +52,8 @@ struct SlabMedia {
     s.zone = k / per_zone;
     s.zone_count = int(g.zones.size());
     s.twin = g.twinned ? k % per_zone : -1;
-    s.n = vibration_index(*map.crystal_of_domain(s.domain), map.orientation_of_domain(s.domain), kBeckeWavelengthNm,
-                          vibration);
+    s.n = vibration_index(*map.crystal_of_domain(s.domain), map.orientation_of_domain(s.domain),
+                          kBeckeWavelengthNm, vibration);
     return s;
   }
 };
@@ -99,7 +101,9 @@ SectionBeckeProbe probe_section_becke_line(const SectionMap& map, const Scene& s
   if (!r.found) return r;
   r.there = media.side_at(beyond);
   const double d = r.here.n - r.there.n;
-  r.moves_into = std::abs(d) < kBeckeMatch ? BeckeMovesInto::Matched : d > 0 ? BeckeMovesInto::Here : BeckeMovesInto::There;
+  r.moves_into = std::abs(d) < kBeckeMatch ? BeckeMovesInto::Matched
+                 : d > 0                   ? BeckeMovesInto::Here
+                                           : BeckeMovesInto::There;
   return r;
 }
 
@@ -110,7 +114,8 @@ SectionBeckeProbe probe_section_becke_line(const Scene& scene, double x, double 
 std::string section_becke_side_name(const SectionBeckeSide& s) {
   if (s.is_medium()) return "mounting medium";
   std::string name = s.mineral + " (grain " + std::to_string(s.grain);
-  if (s.zone_count > 1) name += ", zone " + std::to_string(s.zone + 1) + " of " + std::to_string(s.zone_count);
+  if (s.zone_count > 1)
+    name += ", zone " + std::to_string(s.zone + 1) + " of " + std::to_string(s.zone_count);
   if (s.twin >= 0) name += ", twin individual " + std::to_string(s.twin + 1);
   return name + ")";
 }
@@ -124,19 +129,22 @@ std::string describe_section_becke_line(const SectionBeckeProbe& p) {
   const std::string here = section_becke_side_name(p.here), there = section_becke_side_name(p.there);
   char buf[512];
   if (!p.found) {
-    std::snprintf(buf, sizeof buf,
-                  "No boundary within %.0f um: here %s, %s. Move to a grain edge or a crack to watch the Becke line.",
-                  p.radius_um, here.c_str(), index(p.here).c_str());
+    std::snprintf(
+        buf, sizeof buf,
+        "No boundary within %.0f um: here %s, %s. Move to a grain edge or a crack to watch the Becke line.",
+        p.radius_um, here.c_str(), index(p.here).c_str());
     return buf;
   }
-  const int n = std::snprintf(buf, sizeof buf, "Nearest boundary %.1f um away: %s, %s | %s, %s. ", p.distance_um,
-                              here.c_str(), index(p.here).c_str(), there.c_str(), index(p.there).c_str());
+  const int n =
+      std::snprintf(buf, sizeof buf, "Nearest boundary %.1f um away: %s, %s | %s, %s. ", p.distance_um,
+                    here.c_str(), index(p.here).c_str(), there.c_str(), index(p.there).c_str());
   const std::size_t used = std::min(sizeof buf - 1, std::size_t(std::max(0, n)));
   if (p.moves_into == BeckeMovesInto::Matched) {
-    std::snprintf(buf + used, sizeof buf - used,
-                  "The indices match within %.3f: the boundary nearly vanishes and shows no Becke line, only faint "
-                  "dispersion colours.",
-                  kBeckeMatch);
+    std::snprintf(
+        buf + used, sizeof buf - used,
+        "The indices match within %.3f: the boundary nearly vanishes and shows no Becke line, only faint "
+        "dispersion colours.",
+        kBeckeMatch);
   } else {
     const bool into_here = p.moves_into == BeckeMovesInto::Here;
     std::snprintf(buf + used, sizeof buf - used,

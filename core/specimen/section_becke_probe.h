@@ -35,20 +35,20 @@ struct SectionBeckeSide {
   // Which part of the grain (a boundary inside one grain is between zones or twin individuals):
   // zone index of zone_count (inner to outer), twin individual 0 or 1 (−1: untwinned grain).
   int zone = 0, zone_count = 1, twin = -1;
-  double n = 0.0;                         // n' along the polarizer at kBeckeWavelengthNm (n_D of the medium)
+  double n = 0.0;  // n' along the polarizer at kBeckeWavelengthNm (n_D of the medium)
   bool is_medium() const { return grain == 0; }
 };
 
 enum class BeckeMovesInto { Matched, Here, There };
 
 struct SectionBeckeProbe {
-  glm::dvec2 point_um{0.0};    // the probed section point (section coordinates × 1000)
-  double radius_um = 0.0;      // how far the boundary was looked for
-  SectionBeckeSide here;       // the medium under the point
-  bool found = false;          // a boundary within radius_um
-  SectionBeckeSide there;      // the medium beyond the nearest boundary (when found)
-  double distance_um = 0.0;    // from the point to that boundary, in the section plane
-  glm::dvec2 boundary_um{0.0}; // the nearest boundary point
+  glm::dvec2 point_um{0.0};     // the probed section point (section coordinates × 1000)
+  double radius_um = 0.0;       // how far the boundary was looked for
+  SectionBeckeSide here;        // the medium under the point
+  bool found = false;           // a boundary within radius_um
+  SectionBeckeSide there;       // the medium beyond the nearest boundary (when found)
+  double distance_um = 0.0;     // from the point to that boundary, in the section plane
+  glm::dvec2 boundary_um{0.0};  // the nearest boundary point
   // Focusing up (focus +), the line moves into the side of higher n'; Matched within kBeckeMatch.
   BeckeMovesInto moves_into = BeckeMovesInto::Matched;
 };
