@@ -84,6 +84,9 @@ class App {
   const Layout& layout() const { return layout_; }
   const AppCounters& counters() const { return counters_; }
   bool help_open() const { return help_open_; }
+  // The Becke-line sentence the teaching panel shows at the probe (grain mounts, orthoscopic thin
+  // sections; empty until the probe has answered, or after an error): what the student reads.
+  std::string becke_text() const;
 
  private:
   void pull_snapshot();

@@ -13,6 +13,7 @@
 #include "core/microscope/pixel_probe.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/specimen/becke_probe.h"
+#include "core/specimen/section_becke_probe.h"
 #include "core/specimen/specimen_scene.h"
 #include "core/spectrum/illuminant.h"
 #include "ui/app.h"
@@ -25,6 +26,10 @@ struct App::Teaching {
     PixelProbe probe;
     std::optional<GrainReport> grain;  // the grain under the point (orthoscopic thin sections)
     std::optional<BeckeProbe> becke;   // grain mounts: what the Becke line does at the point
+    // Thin sections (orthoscopic): what the Becke line does at the nearest boundary, and whether
+    // the image shows it now (the slab is traced: relief on, analyzer out).
+    std::optional<SectionBeckeProbe> section_becke;
+    bool section_becke_traced = false;
     std::string error;
   };
   // The grain mount the Becke probe reads (built by the probe job, used only by probe jobs,
@@ -37,6 +42,8 @@ struct App::Teaching {
   };
   std::shared_ptr<BeckeMount> becke_mount = std::make_shared<BeckeMount>();
   std::optional<BeckeProbe> becke;
+  std::optional<SectionBeckeProbe> section_becke;
+  bool section_becke_traced = false;
   std::optional<GrainReport> grain;
   PixelProbe probe;
   std::string probe_error;

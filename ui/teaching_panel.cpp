@@ -10,6 +10,8 @@
 #include "core/microscope/grain_probe.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/specimen/grain_mount_render.h"
+#include "core/specimen/section_becke_probe.h"
+#include "core/specimen/traced_specimen.h"
 
 #include "ui/app.h"
 #include "ui/teaching.h"
@@ -213,6 +215,14 @@ void App::draw_grain_overlay(ImDrawList* draw, float cx, float cy, float len) co
   }
 }
 
+std::string App::becke_text() const {
+  const Teaching& t = *teaching_;
+  if (!t.probe_error.empty()) return {};
+  if (t.becke) return describe_becke_line(*t.becke);
+  if (t.section_becke) return describe_section_becke_line(*t.section_becke);
+  return {};
+}
+
 void App::draw_teaching() {
   const Layout& l = layout_;
   ImGui::SetNextWindowPos(ImVec2(l.teaching.x, l.teaching.y));
@@ -227,6 +237,8 @@ void App::draw_teaching() {
     t.probe = std::move(r.probe);
     t.grain = std::move(r.grain);
     t.becke = std::move(r.becke);
+    t.section_becke = std::move(r.section_becke);
+    t.section_becke_traced = r.section_becke_traced;
     t.probe_error = std::move(r.error);
     t.spectrum.assign(t.probe.transmission.begin(), t.probe.transmission.end());
   }
@@ -253,6 +265,12 @@ void App::draw_teaching() {
         }
         r.probe = probe_pixel(scene, x, y);
         r.grain = grain_at_image_point(scene, x, y);
+        // Image points are section points only in orthoscopic view (conoscopic ones are directions).
+        if (scene.sample_in && scene.sample.type == SampleType::Section && scene.mode == ViewMode::Ortho &&
+            !scene.bertrand_in) {
+          r.section_becke = probe_section_becke_line(scene, x, y);
+          r.section_becke_traced = is_traced_specimen(scene);
+        }
       } catch (const std::exception& e) {
         r.error = e.what();
       }
@@ -269,7 +287,7 @@ void App::draw_teaching() {
     ImGui::Text("n' (polarizer) %.4f%s", b.mineral_n, b.on_fragment ? "" : " (a fragment of this mount)");
     ImGui::Text("Liquid n_D    %.4f", b.liquid_n);
     ImGui::Text("Focus         %+.1f um", scene_.focus_um);
-    ImGui::TextWrapped("Becke line: %s", describe_becke_line(b).c_str());
+    ImGui::TextWrapped("Becke line: %s", becke_text().c_str());
     if (scene_.analyzer_in) ImGui::TextWrapped("%s", describe_crossed_polars(b).c_str());
   } else if (!p.lit) {
     ImGui::TextDisabled("no light reaches this point");
@@ -279,6 +297,12 @@ void App::draw_teaching() {
     ImGui::Text("Retardation   %.0f nm", p.retardation_nm);
     ImGui::Text("Order         %.2f (order %d)", p.order, static_cast<int>(p.order) + 1);
     if (t.grain) draw_grain_text(*t.grain);
+    if (t.section_becke) {
+      ImGui::Text("Focus         %+.1f um", scene_.focus_um);
+      ImGui::TextWrapped("Becke line: %s", becke_text().c_str());
+      if (!t.section_becke_traced)
+        ImGui::TextDisabled("(seen in plane light with relief on: analyzer out, optics.relief on)");
+    }
     ImGui::TextUnformatted("Transmitted spectrum, 380-780 nm");
     const float top =
         std::max(1.0f, t.spectrum.empty() ? 1.0f : *std::max_element(t.spectrum.begin(), t.spectrum.end()));

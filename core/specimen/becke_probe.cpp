@@ -5,30 +5,15 @@
 
 #include "core/base/units.h"
 #include "core/crystal/section_optics.h"
-#include "core/specimen/grain_mount_render.h"
+#include "core/specimen/probe_point.h"
 
 namespace pmsim {
-namespace {
-
-constexpr double kLambdaD_nm = 589.26;
-// |n' − n_D| below which the outline of a 30–300 µm fragment is no longer seen as a line but as
-// the colour fringes of a near match (the precision of the immersion method, Nesse 2012 §4).
-constexpr double kMatch = 0.001;
-
-}  // namespace
-
 BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, double x, double y) {
-  const PlaneLightOptions o = plane_light_options(scene);
-  // The pixel-to-specimen map of render_plane_light: image offset from the centre, turned back
-  // by the stage angle, plus the specimen point under the centre.
-  const double fx = (x - 0.5) * o.width * o.um_per_px, fy = (0.5 - y) * o.height * o.um_per_px;
-  const double c = std::cos(-o.stage_rad), s = std::sin(-o.stage_rad);
-  const double px = o.centre_um.x + c * fx - s * fy, py = o.centre_um.y + s * fx + c * fy;
+  const ProbePoint pp = probe_point(scene, x, y);
+  const glm::dvec3& vibration = pp.vibration;
   BeckeProbe r;
-  r.liquid_n = specimen.liquid().n(kLambdaD_nm);
-  const glm::dvec3 vibration{c * std::cos(o.polarizer_rad) - s * std::sin(o.polarizer_rad),
-                             s * std::cos(o.polarizer_rad) + c * std::sin(o.polarizer_rad), 0.0};
-  r.fragment = specimen.fragment_under(px, py);
+  r.liquid_n = specimen.liquid().n(kBeckeWavelengthNm);
+  r.fragment = specimen.fragment_under(pp.specimen_um.x, pp.specimen_um.y);
   r.on_fragment = r.fragment >= 0;
   if (!r.on_fragment) {
     // Over liquid: the mineral's index for a fragment in this mount is the same crystal's along
@@ -37,18 +22,18 @@ BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, d
     if (specimen.fragment_count() == 0) return r;
     r.fragment = 0;
   }
-  r.mineral_n = specimen.index(kFirstFragment + r.fragment, kLambdaD_nm, vibration);
+  r.mineral_n = specimen.index(kFirstFragment + r.fragment, kBeckeWavelengthNm, vibration);
   const int medium = kFirstFragment + r.fragment;
   if (const Crystal* crystal = specimen.crystal_of(medium)) {
     const SectionOptics so =
-        section_optics(specimen.orientation_of(medium), crystal->principal_indices(kLambdaD_nm), {0.0, 0.0, 1.0});
+        section_optics(specimen.orientation_of(medium), crystal->principal_indices(kBeckeWavelengthNm), {0.0, 0.0, 1.0});
     r.n_fast = so.n_fast;
     r.n_slow = so.n_slow;
   } else {
     r.n_fast = r.n_slow = r.mineral_n;
   }
   const double d = r.mineral_n - r.liquid_n;
-  r.moves_into_mineral = std::abs(d) < kMatch ? 0 : (d > 0 ? 1 : -1);
+  r.moves_into_mineral = std::abs(d) < kBeckeMatch ? 0 : (d > 0 ? 1 : -1);
   return r;
 }
 

@@ -12,6 +12,13 @@
 
 namespace pmsim {
 
+// The Becke-line probes' wavelength: the sodium D line, where immersion liquids and mounting
+// media are specified (n_D).
+constexpr double kBeckeWavelengthNm = 589.26;
+// |n' − n_D| below which the outline of a 30–300 µm fragment is no longer seen as a line but as
+// the colour fringes of a near match (the precision of the immersion method, Nesse 2012 §4).
+constexpr double kBeckeMatch = 0.001;
+
 struct BeckeProbe {
   bool on_fragment = false;   // the point lies over a fragment (else over liquid)
   int fragment = -1;          // nearest fragment index in the mount (the one under the point if on_fragment)

@@ -54,6 +54,25 @@ double smoothstep01(double x) {
 
 }  // namespace
 
+std::vector<int> section_slab_media(const SectionMap& m) {
+  std::vector<int> medium_of_domain(std::size_t(m.domain_count()), kSpecimenLiquid);
+  int next = kFirstFragment;
+  for (int d = 2; d < m.domain_count(); ++d)
+    if (m.crystal_of_domain(d) && !m.is_opaque(d)) medium_of_domain[std::size_t(d)] = next++;
+  return medium_of_domain;
+}
+
+SlabNode section_slab_node(const SectionMap& m, const glm::dvec2& p_mm, double spacing_um) {
+  SlabNode node;
+  node.domain = m.domain_at(p_mm);
+  if (node.domain == SectionMap::kSlideDomain) return node;
+  // Cracks at least a grid step wide: a crack narrower than h would be hit by some nodes and
+  // missed by others, a dashed line of pinholes.
+  node.crack_family = m.crack_family_at(p_mm, node.crack_grain, 1e-3 * spacing_um);
+  if (node.crack_family >= 0) node.domain = SectionMap::kMediumDomain;
+  return node;
+}
+
 std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const SectionMap>& map,
                                                   const IsotropicMedium& medium, const SectionSlabOptions& o) {
   if (!map) throw std::invalid_argument("build_section_slab: no section");
@@ -62,14 +81,12 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
   const SectionMap& m = *map;
 
   // Media: one per crystal domain, in domain order.
-  std::vector<int> medium_of_domain(std::size_t(m.domain_count()), kSpecimenLiquid);
+  const std::vector<int> medium_of_domain = section_slab_media(m);
   std::vector<SpecimenMedium> media;
-  for (int d = 2; d < m.domain_count(); ++d) {
-    const Crystal* c = m.crystal_of_domain(d);
-    if (!c || m.is_opaque(d)) continue;
-    medium_of_domain[std::size_t(d)] = kFirstFragment + int(media.size());
-    media.push_back({std::nullopt, std::shared_ptr<const Crystal>(map, c), m.orientation_of_domain(d)});
-  }
+  for (int d = 2; d < m.domain_count(); ++d)
+    if (medium_of_domain[std::size_t(d)] != kSpecimenLiquid)
+      media.push_back({std::nullopt, std::shared_ptr<const Crystal>(map, m.crystal_of_domain(d)),
+                       m.orientation_of_domain(d)});
 
   // The node lattice: global (node positions are multiples of h), so that the same section point
   // gets the same node wherever the window lies.
@@ -86,17 +103,11 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
   tbb::parallel_for(tbb::blocked_range<int>(1, N - 1), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j)
       for (int i = 1; i < N - 1; ++i) {
-        const glm::dvec2 p_mm = 1e-3 * node_pos(i, j);
-        const int d = m.domain_at(p_mm);
+        const SlabNode node = section_slab_node(m, 1e-3 * node_pos(i, j), h);
         const std::size_t n = std::size_t(j) * N + i;
-        label[n] = medium_of_domain[std::size_t(d)];
-        if (d == SectionMap::kSlideDomain) continue;
-        // Cracks at least a grid step wide: a crack narrower than h would be hit by some nodes
-        // and missed by others, a dashed line of pinholes.
-        int g = -1;
-        const int f = m.crack_family_at(p_mm, g, 1e-3 * h);
+        label[n] = medium_of_domain[std::size_t(node.domain)];
+        const int f = node.crack_family, g = node.crack_grain;
         if (f < 0) continue;
-        label[n] = kSpecimenLiquid;
         // The cleavage plane through the crack's trace on the top face reaches the bottom face
         // shifted along its horizontal normal by t·n_z/|n_h| (n·Δx = 0 over a drop of t).
         const glm::dvec3 pn = m.grains[std::size_t(g)].cracks[std::size_t(f)].plane_normal;

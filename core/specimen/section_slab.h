@@ -25,6 +25,7 @@
 // steps (the bottom keeps the raw ones: a thin smoothed quad could turn over under the lean).
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -47,6 +48,19 @@ struct SectionSlabOptions {
 
 // At most this many grid nodes a side: ~1.4 M triangles for a window full of grains.
 constexpr int kMaxSlabNodes = 600;
+
+// Which slab medium each domain of `map` becomes: kFirstFragment + k for the k-th domain (in
+// domain order) with a crystal, kSpecimenLiquid (the mounting medium) for the slide, the cracks,
+// domains without a crystal and an opaque domain.
+std::vector<int> section_slab_media(const SectionMap& map);
+// What the slab's grid node at section point p_mm stands for: its domain (SectionMap::
+// kMediumDomain on a crack, cracks widened to at least spacing_um), and the crack's grain and
+// family (−1 off cracks). The slab's media are section_slab_media of these domains.
+struct SlabNode {
+  int domain = SectionMap::kSlideDomain;
+  int crack_grain = -1, crack_family = -1;
+};
+SlabNode section_slab_node(const SectionMap& map, const glm::dvec2& p_mm, double spacing_um);
 
 // Builds the slab. Domains 0 (beyond the section) and 1 (cracks) are the mounting medium
 // `medium`; every other domain with a crystal is one medium (its crystal and indicatrix axes in

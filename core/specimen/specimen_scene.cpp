@@ -8,6 +8,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/crystal/vibration_index.h"
+
 namespace pmsim {
 
 SpecimenScene::SpecimenScene(const std::vector<FragmentShape>& fragments, const Crystal& mineral,
@@ -141,13 +143,7 @@ double SpecimenScene::index(int id, double wavelength_nm, const glm::dvec3& vibr
   }
   const SpecimenMedium& m = media_.at(std::size_t(id));
   if (!m.crystal) return m.isotropic->n(wavelength_nm);
-  const Crystal& crystal = *m.crystal;
-  const glm::dvec3 n = crystal.principal_indices(wavelength_nm);
-  if (crystal.symmetry() == CrystalSymmetry::Isotropic) return n.x;
-  const glm::dmat3& R = m.crystal_to_lab;
-  const glm::dvec3 v = glm::normalize(vibration);
-  const double a = glm::dot(v, R[0]), b = glm::dot(v, R[1]), c = glm::dot(v, R[2]);
-  return 1.0 / std::sqrt(a * a / (n.x * n.x) + b * b / (n.y * n.y) + c * c / (n.z * n.z));
+  return vibration_index(*m.crystal, m.crystal_to_lab, wavelength_nm, vibration);
 }
 
 // Isotropic minerals are no crystal to the tracer: their light does not split into modes.

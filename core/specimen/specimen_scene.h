@@ -91,7 +91,7 @@ class SpecimenScene {
 
   // Refractive index of medium `id` at λ for light vibrating along unit `vibration` (lab frame):
   // isotropic media ignore it; a fragment uses the radius of its indicatrix along the vibration,
-  // 1/n'² = Σ (v·axis_i)²/n_i² (Nesse 2012 §7, the indicatrix), with axes = crystal_to_lab columns.
+  // vibration_index (core/crystal/vibration_index.h) with axes = crystal_to_lab columns.
   double index(int id, double wavelength_nm, const glm::dvec3& vibration) const;
   // The crystal of medium `id` (nullptr for isotropic media, isotropic minerals included:
   // the polarization-exact tracer splits modes with it) and its crystal_to_lab (columns X, Y,
