@@ -28,13 +28,16 @@
 // The source grid reaches past the image by the farthest a collected ray can be imaged from
 // its start (a deviation within the objective's NA over the specimen's depth and the defocus).
 //
-// White light: a pass traces the reference λ (555 nm) and one band's λ (pass j: band (j/2)
-// mod n, so both split halves cycle through all bands); a band's value is the reference image
-// plus the mean over its passes of [band splats − reference splats] (a control variate exact in
-// expectation; in flat regions both splats land on the same pixels and the difference is only
-// the smooth change of absorption and Fresnel terms with λ).
+// White light: every source point traces the reference λ (555 nm); every third one in x and y
+// (kChromaPeriod) also traces one λ in each of the bands, its reference and band splats spread
+// with a tent of radius 3 pixels (over a grid of that period those tents also sum to 1). A band's
+// value is the reference image plus [band splats − subgrid reference splats]: a control variate
+// exact in expectation, whose difference in flat regions is only the smooth change of absorption
+// and Fresnel terms with λ, so the colour is resolved at a third of the pixel grid (as video's
+// chroma subsampling) and complete after one pass, for 1 + 8/9 traces a pixel a pass.
 //
-// Split half, tolerance stop, spp (traces a pixel: 2 a pass in white light), preview (1/factor
+// Split half (an estimate after 2 passes), tolerance stop, spp (traces a pixel: 1.89 a pass in
+// white light), preview (1/factor
 // size, grey, at the reference λ), cancel and progress: as render_plane_light.
 // Analyzer in is not traced forward: the branches' coherent sum needs the backward pairing.
 #include <atomic>
