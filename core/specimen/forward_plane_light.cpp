@@ -26,10 +26,11 @@ namespace pmsim {
 
 namespace {
 
-// The bands' rays start from every kChromaPeriod-th source point in x and y and are splatted with
-// a tent of that radius: the colour's difference to the reference at a third of the resolution
-// (still exact where light is only translated), every band every pass, for 8/9 of a trace a pixel.
-constexpr int kChromaPeriod = 3;
+// The bands' rays start from every P-th source point in x and y and are splatted with a tent of
+// radius P: the colour's difference to the reference at 1/P of the resolution (still exact where
+// light is only translated), every band every pass. Plane light: 8 bands on P = 3, 8/9 of a trace
+// a pixel; analyzer in: 32 bands (interference colours) on P = 4, 2 traces a pixel.
+constexpr int kChromaPeriodPlane = 3, kChromaPeriodCrossed = 4;
 
 glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) { return {c * v.x - s * v.y, s * v.x + c * v.y, v.z}; }
 
@@ -58,15 +59,16 @@ struct PassRay {
 RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLightOptions& o,
                                        const std::function<void(const RenderImage&)>& progress,
                                        InterfaceCounters* counters, const std::atomic<bool>* cancel) {
-  if (o.analyzer_in || o.scalar_tracer)
-    throw std::invalid_argument("render_plane_light_forward: plane light with the polarization-exact tracer only");
+  if (o.scalar_tracer)
+    throw std::invalid_argument("render_plane_light_forward: the polarization-exact tracer only");
   const auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
   const auto t0 = std::chrono::steady_clock::now();
   const auto elapsed_ms = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   };
   const bool mono = o.single_wavelength_nm > 0.0;
-  const int nb = mono ? 1 : std::max(1, o.bands);
+  const int nb = mono ? 1 : std::max(o.analyzer_in ? kCrossedPolarBands : 1, o.bands);
+  const int kChromaPeriod = o.analyzer_in ? kChromaPeriodCrossed : kChromaPeriodPlane;
   const SpectralBands bands = spectral_bands(nb, o.illuminant, !mono);
   const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
   const double lambda_ref = mono ? o.single_wavelength_nm : 555.0;
@@ -78,12 +80,13 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   const double z_source = -L.slide_um - 5.0;  // in the air below the slide
   const double c = std::cos(-o.stage_rad), s = std::sin(-o.stage_rad);
   const glm::dvec3 vibration = rotate_z({std::cos(o.polarizer_rad), std::sin(o.polarizer_rad), 0.0}, c, s);
+  const glm::dvec3 analyzer = rotate_z({std::cos(o.analyzer_rad), std::sin(o.analyzer_rad), 0.0}, c, s);
   const glm::dvec2 centre = o.centre_um;
 
   // The empty stack: the shift and transmittance of a pass's direction at its λ (plane faces:
   // one ray says it for every start point).
   const SpecimenScene empty({}, scene.mineral(), scene.liquid(), scene.glass(), scene.air(), L);
-  const auto trace = [&](const SpecimenScene& sc, const glm::dvec3& origin, const PassRay& r,
+  const auto trace = [&](const SpecimenScene& sc, const glm::dvec3& origin, const PassRay& r, bool with_analyzer,
                          InterfaceCounters* ic) {
     JonesPathRequest q;
     q.forward = true;
@@ -94,6 +97,8 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     q.start_vibration = vibration;
     q.polarizer = vibration;
     q.objective_sin_max = na;
+    q.forward_analyzer_in = with_analyzer;
+    q.forward_analyzer = analyzer;
     return trace_specimen_jones(sc, q, ic);
   };
   const auto pass_ray = [&](double u1, double u2, double wavelength_nm) {
@@ -101,7 +106,8 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     const double sin_t = nac * std::sqrt(u1), phi = 2.0 * kPi * u2;
     r.dir = {sin_t * std::cos(phi), sin_t * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t))};
     r.wavelength_nm = wavelength_nm;
-    const JonesPath p = trace(empty, {0.0, 0.0, z_source}, r, nullptr);
+    // The exposure: the empty field with the analyzer out is 1.
+    const JonesPath p = trace(empty, {0.0, 0.0, z_source}, r, false, nullptr);
     if (p.n_exits > 0) {
       r.shift = focal_point(p.exits[0], z_air);
       r.empty_t = p.exits[0].power;
@@ -122,9 +128,10 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   img.rgb.assign(npx * 3, 0.0f);
   img.xyz.assign(npx * 3, 0.0f);
   img.wavelengths = nb;
-  img.model_report =
-      "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode splitting, tent splats), "
-      "plane-polarized light";
+  img.model_report = o.analyzer_in ? "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
+                                     "splitting, coherent sum at the analyzer, tent splats), analyzer in"
+                                   : "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
+                                     "splitting, tent splats), plane-polarized light";
   std::mutex counter_mutex;
 
   // Specimen point of image position (fx, fy) (pixels from the top left) on a grid of ww × hh
@@ -157,11 +164,12 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
             const PassRay& r = rays[k];
             if (!(r.empty_t > 0.0)) continue;
             const glm::dvec2 start = q - r.shift;
-            const JonesPath p = trace(scene, {start.x, start.y, z_source}, r, lc);
+            const JonesPath p = trace(scene, {start.x, start.y, z_source}, r, o.analyzer_in, lc);
             for (int e = 0; e < p.n_exits; ++e) {
               const JonesExit& x = p.exits[std::size_t(e)];
               const double v = x.power / r.empty_t;
-              if (!(v > 0.0) || !std::isfinite(v) || std::abs(x.dir.z) < 1e-9) continue;
+              // (< 0: an exit's share of a coherent sum with the analyzer in)
+              if (v == 0.0 || !std::isfinite(v) || std::abs(x.dir.z) < 1e-9) continue;
               splat(int(k), sub, to_image(focal_point(x, z_air), um, ww, hh), v);
             }
           }
@@ -225,8 +233,8 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
           const int x0 = std::min(int(cx), cw - 1), x1 = std::min(x0 + 1, cw - 1);
           const double tx = cx - x0;
           const auto at = [&](int xx, int yy) { return coarse[std::size_t(yy) * cw + xx]; };
-          const double v =
-              (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
+          const double v = std::max(0.0,
+              (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1)));
           const std::size_t pix = std::size_t(y) * w + x;
           const glm::dvec3 xyz = v * open_xyz, rgb = v * open_rgb;
           for (int k = 0; k < 3; ++k) img.xyz[pix * 3 + k] = float(xyz[k]), img.rgb[pix * 3 + k] = float(rgb[k]);
@@ -261,12 +269,13 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
       if (!mono) sub += ref_sub[hh][pix];
     }
     if (n == 0) return glm::dvec3(0.0);
-    if (mono) return (ref / n) * white;
+    if (mono) return std::max(0.0, ref / n) * white;
     glm::dvec3 xyz(0.0);
     for (int b = 0; b < nb; ++b) {
       double band = 0.0;
       for (int hh = h0; hh <= h1; ++hh) band += band_sub[hh][pix * std::size_t(nb) + std::size_t(b)];
-      xyz += ((ref + band - sub) / n) * bands.weight[std::size_t(b)];
+      // ≥ 0: the splats of a coherent sum's shares and the control variate can undershoot 0 by noise.
+      xyz += std::max(0.0, (ref + band - sub) / n) * bands.weight[std::size_t(b)];
     }
     return xyz;
   };

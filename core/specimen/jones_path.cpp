@@ -123,6 +123,7 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
   std::array<Lit, kMaxJonesLeaves> lit;
   int n_lit = 0;
   double crystal_um = 0.0;
+  std::array<cd, kMaxJonesLeaves> exit_amp{};  // forward, analyzer in: per exit
   const glm::dvec3 x_start = q.origin;
 
   std::array<Branch, 2 * kMaxJonesLeaves> stack;
@@ -149,11 +150,20 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
           if (b.medium == kSpecimenAir && b.dir.z > 0.0 && sin_exit <= q.objective_sin_max &&
               out.n_exits < kMaxJonesLeaves) {
             ++out.lit;
-            JonesExit& e = out.exits[std::size_t(out.n_exits++)];
+            const int i = out.n_exits++;
+            JonesExit& e = out.exits[std::size_t(i)];
             e.point = b.events > 0 ? b.surface : b.origin;
             e.dir = b.dir;
-            e.power = power(b.E[0]);
-            out.power[0] += e.power;
+            if (q.forward_analyzer_in) {
+              glm::dvec3 a = q.forward_analyzer - glm::dot(q.forward_analyzer, b.dir) * b.dir;
+              const double al = glm::length(a);
+              // The plane wave leaving along the branch: its phase at the exit point.
+              const double phase = b.phase_rad - k0 * b.n * glm::dot(b.dir, e.point - x_start);
+              exit_amp[std::size_t(i)] = al > 1e-12 ? std::polar(1.0, phase) * dot(a / al, b.E[0]) : cd(0.0);
+              crystal_um = std::max(crystal_um, b.crystal_um);
+            } else {
+              e.power = power(b.E[0]);
+            }
           }
           break;
         }
@@ -361,6 +371,25 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       for (int k = 0; k < starts; ++k) out.power[k] += 2.0 * gamma * std::real(li.amp[k] * std::conj(lj.amp[k]));
     }
   for (int k = 0; k < starts; ++k) out.power[k] = std::max(0.0, out.power[k]);
+  if (q.forward) {
+    // Forward: each exit's share of the coherent sum (see JonesPathRequest::forward_analyzer_in).
+    out.power[0] = 0.0;
+    for (int i = 0; i < out.n_exits; ++i) {
+      JonesExit& ei = out.exits[std::size_t(i)];
+      if (q.forward_analyzer_in) {
+        const cd ai = exit_amp[std::size_t(i)];
+        ei.power = std::norm(ai);
+        for (int j = 0; j < out.n_exits; ++j) {
+          if (j == i) continue;
+          const glm::dvec3 dd = ei.dir - out.exits[std::size_t(j)].dir;
+          const double gamma = std::exp(-k0 * crystal_um * glm::dot(dd, dd));
+          if (gamma >= 1e-12) ei.power += gamma * std::real(ai * std::conj(exit_amp[std::size_t(j)]));
+        }
+      }
+      out.power[0] += ei.power;
+    }
+    out.power[0] = std::max(0.0, out.power[0]);
+  }
   return out;
 }
 

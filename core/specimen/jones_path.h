@@ -69,13 +69,20 @@ struct JonesPathRequest {
   // direction and power |E|² (analyzer out: the camera adds the branches' intensities).
   bool forward = false;
   double objective_sin_max = 1.0;
+  // Forward with the analyzer in: each exit's field is projected on the analyzer's vibration
+  // (lab / specimen frame, projected ⟂ the exit direction) and the exits of one path are summed
+  // with their mutual coherence (as the backward lit branches): exit i's power is
+  // |a_i|² + Σ_j≠i γ_ij Re(a_i a_j*), so that the powers add up to the coherent total and each
+  // is splatted where its own branch lands (γ = 1 for a plate's two waves, which land together).
+  bool forward_analyzer_in = false;
+  glm::dvec3 forward_analyzer{0.0, 1.0, 0.0};
 };
 
 // A forward path's branch leaving the cover glass toward the objective.
 struct JonesExit {
   glm::dvec3 point{0.0};  // on the cover glass's top face
   glm::dvec3 dir{0.0};    // unit, up
-  double power = 0.0;     // |E|², of the unit power that entered
+  double power = 0.0;     // |E|², of the unit power that entered (analyzer in: see above; may be < 0)
 };
 
 struct JonesPath {
