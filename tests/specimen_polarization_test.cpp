@@ -218,8 +218,10 @@ TEST(SpecimenPolarization, WhiteLightInterferenceColourConvergesToTheSpectralInt
 }
 
 // (a'', forward) The same plate's colour rendered forward from the condenser, as the thin sections
-// are: 32 bands on a subgrid of period 4 (forward_plane_light.h). Same tolerances and reasons as
-// above; the plate is flat, so every pass is exact up to the bands' λ jitter.
+// are: 32 bands on a subgrid of period 4, 4 λ a band a pass (forward_plane_light.h). Same
+// tolerances and reasons as above; the plate is flat, so every pass is exact but for the λ
+// sampling within the bands: measured ΔE00 0.38, 0.23, 0.42 (seeds 1–3) at 64 traces a pixel
+// (22 passes), against the backward renderer's 0.28–0.44 at 256.
 TEST(SpecimenPolarization, ForwardWhiteLightInterferenceColourConvergesToTheSpectralIntegral) {
   const double no = 1.54, ne = 1.56;
   const pmsim::Crystal c = pmsim::Crystal::uniaxial_constant("plate", no, ne);
@@ -296,9 +298,7 @@ TEST(SpecimenPolarization, IsotropicFragmentMatchesTheScalarTracer) {
   pmsim::PlaneLightOptions o = specimen_test::mono_view(10.0, 16);
   o.scalar_tracer = true;
   const pmsim::RenderImage scalar = pmsim::render_plane_light(*s, o);
-  o.seed = 2;
   const pmsim::RenderImage scalar2 = pmsim::render_plane_light(*s, o);
-  o.seed = 1;
   o.scalar_tracer = false;
   const pmsim::RenderImage exact = pmsim::render_plane_light(*s, o);
   double d_exact = 0.0, d_noise = 0.0, m_exact = 0.0, m_scalar = 0.0;

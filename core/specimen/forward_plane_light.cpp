@@ -31,6 +31,9 @@ namespace {
 // light is only translated), every band every pass. Plane light: 8 bands on P = 3, 8/9 of a trace
 // a pixel; analyzer in: 32 bands (interference colours) on P = 4, 2 traces a pixel.
 constexpr int kChromaPeriodPlane = 3, kChromaPeriodCrossed = 4;
+// λ within a band: K values a pass, stratified (a shared jitter + k/K), one per subgrid point in
+// a 2×2 pattern, so a pixel's colour averages sin²(πΓ/λ) over K points of each band a pass.
+constexpr int kLambdasPerBand = 4;
 
 glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) { return {c * v.x - s * v.y, s * v.x + c * v.y, v.z}; }
 
@@ -146,8 +149,10 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   };
 
   // One pass over a ww × hh grid: every source pixel (with the margin) traces the reference
-  // rays[0], those of the subgrid of period kChromaPeriod also the bands rays[1…]; each collected
-  // branch goes to `splat(ray index, on the subgrid, image position, weight)`.
+  // rays[0], those of the subgrid of period kChromaPeriod also one ray of each band, rays[1 + b·K
+  // + k] with k = (i + 2j) mod K at subgrid point (i, j) (K = kLambdasPerBand: each 2×2 block of
+  // subgrid points takes the band's K stratified λ); each collected branch goes to
+  // `splat(band + 1 or 0 for the reference, on the subgrid, image position, weight)`.
   const auto run_pass = [&](int ww, int hh, double um, double jx, double jy, const std::vector<PassRay>& rays,
                             const std::function<void(int, bool, const glm::dvec2&, double)>& splat) {
     const int m = kChromaPeriod * (int(std::ceil(reach_um / um / kChromaPeriod)) + 1);
@@ -160,8 +165,11 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
         for (int sx = 0; sx < sw; ++sx) {
           const glm::dvec2 q = to_specimen(sx - m + jx, sy - m + jy, um, ww, hh);
           const bool sub = sx % kChromaPeriod == 0 && sy % kChromaPeriod == 0;
-          for (std::size_t k = 0; k < (sub ? rays.size() : 1); ++k) {
-            const PassRay& r = rays[k];
+          const std::size_t k_lambda =
+              std::size_t((sx / kChromaPeriod + 2 * (sy / kChromaPeriod)) % kLambdasPerBand);
+          const std::size_t n_rays = sub ? 1 + (rays.size() - 1) / kLambdasPerBand : 1;
+          for (std::size_t k = 0; k < n_rays; ++k) {
+            const PassRay& r = k == 0 ? rays[0] : rays[1 + (k - 1) * kLambdasPerBand + k_lambda];
             if (!(r.empty_t > 0.0)) continue;
             const glm::dvec2 start = q - r.shift;
             const JonesPath p = trace(scene, {start.x, start.y, z_source}, r, o.analyzer_in, lc);
@@ -289,8 +297,11 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     std::vector<PassRay> rays = {pass_ray(d.v[2], d.v[3], lambda_ref)};
     if (!mono)
       for (int b = 0; b < nb; ++b)
-        rays.push_back(pass_ray(d.v[2], d.v[3],
-                                bands.lo_nm[std::size_t(b)] + bands.width_nm[std::size_t(b)] * d.v[4]));
+        for (int k = 0; k < kLambdasPerBand; ++k) {
+          const double u = d.v[4] + double(k) / kLambdasPerBand;
+          rays.push_back(pass_ray(d.v[2], d.v[3],
+                                  bands.lo_nm[std::size_t(b)] + bands.width_nm[std::size_t(b)] * (u - std::floor(u))));
+        }
     double* ref = ref_acc[half].data();
     double* rsub = mono ? nullptr : ref_sub[half].data();
     double* bsub = mono ? nullptr : band_sub[half].data();
