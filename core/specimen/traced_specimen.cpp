@@ -12,7 +12,11 @@ bool is_traced_specimen(const Scene& scene) {
   if (!scene.sample_in) return false;
   if (scene.sample.type == SampleType::Grains) return true;
   if (scene.sample.type != SampleType::Section || !scene.optics.relief) return false;
-  if (scene.mode != ViewMode::Ortho || scene.bertrand_in || scene.analyzer_in) return false;
+  if (scene.mode != ViewMode::Ortho || scene.bertrand_in) return false;
+  // Between the polars the Jones tracer carries the analyzer's vibration (plane_light_options
+  // passes analyzer_in and analyzer_deg), but no accessory plate: with a compensator inserted the
+  // traced image could not show its colours, so such a scene keeps the flat image.
+  if (scene.analyzer_in && scene.compensator != Compensator::None) return false;
   // An EBSD map shown with opaque non-indexed points has a medium the slab tracer cannot absorb
   // in: it keeps the flat image.
   return !load_scene_section(scene)->has_opaque_domain;
@@ -24,8 +28,11 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   if (scene.sample.type == SampleType::Grains) return render_grain_mount(scene, progress, cancel);
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
   const std::string report =
-      "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), plane-polarized "
-      "light";
+      scene.analyzer_in
+          ? "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting, coherent "
+            "sum), analyzer in"
+          : "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), "
+            "plane-polarized light";
   RenderImage img = render_plane_light(
       *slab, plane_light_options(scene),
       [&](const RenderImage& i) {
