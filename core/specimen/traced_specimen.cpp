@@ -27,12 +27,15 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   if (!is_traced_specimen(scene)) throw std::invalid_argument("render_traced_specimen: not a traced specimen");
   if (scene.sample.type == SampleType::Grains) return render_grain_mount(scene, progress, cancel);
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
-  const std::string report =
+  std::string report =
       scene.analyzer_in
           ? "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting, coherent "
             "sum), analyzer in"
           : "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), "
             "plane-polarized light";
+  // An EBSD map: what it became, as the flat image's report says.
+  if (const MapSectionFacts* f = map_section_facts(*load_scene_section(scene)))
+    report += "; " + map_section_summary(*f);
   RenderImage img = render_plane_light(
       *slab, plane_light_options(scene),
       [&](const RenderImage& i) {
