@@ -132,6 +132,7 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
   if (specimen_selected("grain-mount-calcite-crossed", "crossed-polars"))
     add_rows(crossed_polar_grain_bench_rows(opt.size, log));
   if (specimen_selected("section-granite-plane-light", "plane-light")) add_rows(section_relief_bench_rows(opt.size, log));
+  if (specimen_selected("section-granite-crossed", "crossed-polars")) add_rows(section_crossed_bench_rows(opt.size, log));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

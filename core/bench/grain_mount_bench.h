@@ -21,6 +21,9 @@ std::vector<BenchRow> crossed_polar_grain_bench_rows(int size, std::ostream& log
 // as above, its build time reported alongside (not in the rows' times: a polarizer or focus
 // change reuses the cached slab).
 std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log);
+// The same granite slab between crossed polars (polarizer 0°, analyzer 90°: 32 bands, 18 paths a
+// pass), at min(size, 128)² pixels so that its 1024-path reference stays within the bench's minutes.
+std::vector<BenchRow> section_crossed_bench_rows(int size, std::ostream& log);
 // The rows' strategy names are "<polars>-<suffix>", polars "plane-light" or "crossed-polars".
 const std::vector<std::string>& specimen_bench_strategy_suffixes();
 
