@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/microscope/scene.h"
 #include "core/microscope/view_geometry.h"
@@ -38,10 +39,18 @@ constexpr int kPixels = 100;
 
 // A one-grain section file: `mineral` filling a kGrainUm square (the section's extent; beyond it
 // the slide, mounting medium in the slab), its optic axis in the section plane at axis_deg from +x.
+fs::path scratch_dir() { return fs::temp_directory_path() / ("pmsim_section_crossed_" + std::to_string(::getpid())); }
+
+// The section files go when the tests end (the renderers keep what they loaded).
+struct RemoveScratch : ::testing::Environment {
+  void TearDown() override { fs::remove_all(scratch_dir()); }
+};
+const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
+
 std::string one_grain_file(const std::string& mineral, double axis_deg) {
-  const fs::path dir = fs::temp_directory_path() / ("pmsim_section_crossed_" + std::to_string(::getpid()));
+  const fs::path dir = scratch_dir();
   fs::create_directories(dir);
-  const double a = axis_deg * M_PI / 180.0;
+  const double a = pmsim::radians(axis_deg);
   const nlohmann::json j = {
       {"type", "section"},
       {"name", "one " + mineral},
