@@ -79,8 +79,8 @@ TEST(UiStage, FieldExportCarriesAScaleBarOfTheRightLength) {
   std::filesystem::remove(path);
   // The bar does not depend on the renderer: the flat section image (optics.relief off) converges
   // in about a second, where the traced slab between crossed polars takes ~90 s at 256².
-  const std::string script =
-      "set optics.relief=off\nset render.width=256\nset render.height=256\nwait converged\nexport " + path + "\n";
+  const std::string script = "set optics.relief=off\nset render.width=256\nset render.height=256\n"
+                             "wait converged\nexport " + path + "\n";
   ASSERT_TRUE(run(*d, script).ok);
   const LoadedImage im = read_image(path);
   // The bar is the longest run of pure white on a row (PNG: sRGB 1.0 → 255 exactly); its length

@@ -29,8 +29,8 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
   std::string report =
       scene.analyzer_in
-          ? "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting, coherent "
-            "sum), analyzer in"
+          ? "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting, "
+            "coherent sum), analyzer in"
           : "thin section slab: backward-traced refraction (Embree, exact Fresnel, eigenmode splitting), "
             "plane-polarized light";
   // An EBSD map: what it became, as the flat image's report says.
