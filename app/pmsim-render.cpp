@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
           for (const std::string& w : f->warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       const bool tty = ::isatty(STDERR_FILENO);
       const auto bar = tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr;
-      // A grain mount, and a thin section in plane light with optics.relief on, are refracting
+      // A grain mount, and a thin section with optics.relief on (orthoscopic), are refracting
       // 3-D specimens (core/specimen), traced with their polarization.
       pmsim::RenderImage img = pmsim::is_traced_specimen(scene) ? pmsim::render_traced_specimen(scene, bar)
                                                                 : pmsim::ProgressiveRenderer::render(scene, 0, bar);

@@ -240,8 +240,9 @@ TEST(SpecimenSectionRelief, MediumIndexSetsTheOutlineContrast) {
   }
 }
 
-// (e) optics.relief = off (and the analyzer in) keeps today's flat image: such scenes are not
-// traced, and the progressive renderer's pixels do not depend on the key.
+// (e) optics.relief = off keeps today's flat image (as do the conoscope and a compensator between
+// the polars): such scenes are not traced, and the progressive renderer's pixels do not depend on
+// the key. The analyzer in is traced too (tests/specimen_section_crossed_test.cpp).
 TEST(SpecimenSectionRelief, ReliefOffGivesTheFlatImage) {
   pmsim::Scene scene;
   scene.sample.type = pmsim::SampleType::Section;
@@ -255,6 +256,8 @@ TEST(SpecimenSectionRelief, ReliefOffGivesTheFlatImage) {
   EXPECT_FALSE(pmsim::is_traced_specimen(off));
   pmsim::Scene crossed = scene;
   crossed.analyzer_in = true;
+  EXPECT_TRUE(pmsim::is_traced_specimen(crossed));
+  crossed.compensator = pmsim::Compensator::Gypsum;
   EXPECT_FALSE(pmsim::is_traced_specimen(crossed));
   pmsim::Scene cono = scene;
   cono.mode = pmsim::ViewMode::Cono;

@@ -355,8 +355,10 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   }
   changed |= ImGui::Checkbox("Relief (refracting section)", &o.relief);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("optics.relief: a thin section in plane light (analyzer out) is traced as a 3-D slab:\n"
-                      "relief, grain outlines, cleavage cracks, the Becke line with the fine focus");
+    ImGui::SetTooltip("optics.relief: a thin section (orthoscopic; analyzer out, or in without a\n"
+                      "compensator) is traced as a 3-D slab: relief, grain outlines, cleavage cracks,\n"
+                      "the Becke line with the fine focus; between crossed polars the colours with\n"
+                      "those outlines");
   ImGui::Separator();
   changed |= ImGui::SliderInt("Wavelengths", &r.wavelengths, 0, 128, r.wavelengths ? "%d" : "auto");
   changed |= ImGui::SliderInt("Samples/pixel", &r.spp, 0, 64, r.spp ? "%d" : "auto");

@@ -46,8 +46,9 @@ void RenderFeed::run() {
     busy_ = true;
     grain_cancel_.store(false);  // under the lock: a later submit() raises it again
     lock.unlock();
-    // Grain mounts and sections in plane light with relief: traced on this thread, not by the
-    // progressive renderer (the slab is cached, so a polarizer or focus change does not rebuild it).
+    // Grain mounts and sections with relief (plane light or between the polars): traced on this
+    // thread, not by the progressive renderer (the slab is cached, so a polarizer or focus change
+    // does not rebuild it).
     bool grains = false;
     try {
       grains = is_traced_specimen(scene);

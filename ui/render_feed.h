@@ -4,7 +4,7 @@
 // section); the UI thread must never wait for that. So scenes go to a small feeder thread that
 // restarts the renderer with the newest one (older pending scenes are skipped: only the last
 // position of a drag matters), and the UI thread only ever takes snapshots.
-// A grain mount (sample.type = grains), and a thin section in plane light with optics.relief on,
+// A grain mount (sample.type = grains), and a thin section with optics.relief on (orthoscopic),
 // are refracting 3-D specimens that the core renders with render_traced_specimen (core/specimen,
 // is_traced_specimen decides), not the ProgressiveRenderer: the feeder thread runs it itself,
 // pass by pass, and a newer submission cancels it through its cancel flag. A section's slab is

@@ -132,6 +132,10 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
   if (specimen_selected("grain-mount-calcite-crossed", "crossed-polars"))
     add_rows(crossed_polar_grain_bench_rows(opt.size, log));
   if (specimen_selected("section-granite-plane-light", "plane-light")) add_rows(section_relief_bench_rows(opt.size, log));
+  // --quick (what tests/bench_json_test.cpp runs): 48², where a 1024-path reference of a crossed-
+  // polar slab takes ~10 s instead of ~40 s at the quick size.
+  if (specimen_selected("section-granite-crossed", "crossed-polars"))
+    add_rows(section_crossed_bench_rows(opt.quick ? std::min(opt.size, 48) : opt.size, log));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

@@ -148,4 +148,15 @@ std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
       render_plane_light_forward);
 }
 
+std::vector<BenchRow> section_crossed_bench_rows(int size, std::ostream& log) {
+  Scene scene;  // crossed polars: the Scene's defaults
+  scene.sample.type = SampleType::Section;
+  scene.sample.section = "granite";
+  scene.render.width = scene.render.height = std::min(size, 256);
+  return timed_specimen_rows(
+      "section-granite-crossed", "crossed-polars", scene, section_slab,
+      [](const SpecimenScene& s) { return std::to_string(s.triangle_count()) + " triangles"; }, log,
+      render_plane_light_forward);
+}
+
 }  // namespace pmsim

@@ -18,9 +18,14 @@ std::vector<BenchRow> grain_mount_bench_rows(int size, std::ostream& log);
 // of 1.54, polarizer 0°, analyzer 90°, at min(size, 256)² pixels, the same rows as above.
 std::vector<BenchRow> crossed_polar_grain_bench_rows(int size, std::ostream& log);
 // The granite thin section at 10× in plane light (analyzer out, optics.relief on): the slab traced
-// as above, its build time reported alongside (not in the rows' times: a polarizer or focus
-// change reuses the cached slab).
+// forward from the condenser as the product does (forward_plane_light.h), against a forward
+// reference of 256 traces a pixel; its build time reported alongside (not in the rows' times: a
+// polarizer or focus change reuses the cached slab).
 std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log);
+// The same granite slab between crossed polars (polarizer 0°, analyzer 90°: forward, 32 bands on
+// a subgrid, 3 traces a pixel a pass), at min(size, 256)² pixels so that its 256-trace reference
+// stays near a minute.
+std::vector<BenchRow> section_crossed_bench_rows(int size, std::ostream& log);
 // The rows' strategy names are "<polars>-<suffix>", polars "plane-light" or "crossed-polars".
 const std::vector<std::string>& specimen_bench_strategy_suffixes();
 

@@ -89,12 +89,7 @@ std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene
   // An EBSD map: what the evaluation reduced it to (core/microscope/map_section.h).
   if (const SectionMap* s = plan->section())
     if (const MapSectionFacts* f = map_section_facts(*s))
-      plan->model_report_ += "; EBSD map: " + std::to_string(f->points) + " points (" + std::to_string(f->indexed) +
-                             " indexed), " + std::to_string(f->grains) + " grains (boundaries > " +
-                             std::to_string(static_cast<int>(kGrainBoundaryDeg)) + "°), " +
-                             std::to_string(f->clusters) + " orientation clusters (within " +
-                             std::to_string(kClusterToleranceDeg).substr(0, 3) + "°): " +
-                             std::to_string(f->domains) + " optical domains";
+      plan->model_report_ += "; " + map_section_summary(*f);
   return plan;
 }
 

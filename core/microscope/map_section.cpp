@@ -242,6 +242,14 @@ const MapSectionFacts* map_section_facts(const SectionMap& section) {
   return it == facts_table().end() ? nullptr : &it->second;
 }
 
+std::string map_section_summary(const MapSectionFacts& f) {
+  return "EBSD map: " + std::to_string(f.points) + " points (" + std::to_string(f.indexed) + " indexed), " +
+         std::to_string(f.grains) + " grains (boundaries > " +
+         std::to_string(static_cast<int>(kGrainBoundaryDeg)) + "°), " + std::to_string(f.clusters) +
+         " orientation clusters (within " + std::to_string(kClusterToleranceDeg).substr(0, 3) +
+         "°): " + std::to_string(f.domains) + " optical domains";
+}
+
 std::shared_ptr<const SectionMap> load_scene_section(const Scene& scene) {
   if (is_orientation_map_path(scene.sample.section))
     return load_map_section(scene.sample.section, scene.sample.phases, scene.sample.nonindexed);

@@ -64,6 +64,10 @@ std::shared_ptr<const SectionMap> load_map_section(const std::string& path,
                                                    NonIndexed nonindexed);
 // The facts of a map section load_map_section built (null for any other section).
 const MapSectionFacts* map_section_facts(const SectionMap& section);
+// What an EBSD map became, for a model report: "EBSD map: N points (M indexed), G grains
+// (boundaries > 10°), C orientation clusters (within 0.5°): D optical domains" — the same words
+// whichever renderer (flat or traced slab) shows the map.
+std::string map_section_summary(const MapSectionFacts& facts);
 
 // The section a scene's sample.section names: an EBSD map (by its .ctf/.ang extension) or a
 // thin-section file (load_section).

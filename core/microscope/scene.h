@@ -110,9 +110,9 @@ struct OpticsSettings {
   LensModel lens_model = LensModel::Auto;      // optics.lens_model
   int lens_depth = 1;                          // optics.lens_depth (dT for physical lenses)
   FresnelModel fresnel = FresnelModel::Exact;  // optics.schlick: true|false (true: Schlick, approximate)
-  // optics.relief: on|off. On: a thin section in plane light (ortho, analyzer out) is traced as a
-  // refracting 3-D slab (core/specimen/traced_specimen.h): relief, outlines, cleavage, focus.
-  // Off: the flat section image of the progressive renderer.
+  // optics.relief: on|off. On: a thin section in the orthoscopic view (analyzer out, or in without
+  // a compensator) is traced as a refracting 3-D slab (core/specimen/traced_specimen.h): relief,
+  // outlines, cleavage, focus. Off: the flat section image of the progressive renderer.
   bool relief = true;
 };
 

@@ -1,9 +1,11 @@
 #pragma once
 // Which scenes are rendered by tracing light through a refracting 3-D specimen (issue 12), and
 // the one entry that renders them: grain mounts (sample.type = grains) always; thin sections in
-// the orthoscopic view with the analyzer out and optics.relief on (plane light: relief, outlines,
-// cleavage cracks, focus and the aperture diaphragm). Everything else — the analyzer in, the
-// conoscopic view, optics.relief = off — is the progressive renderer's (core/render), unchanged.
+// the orthoscopic view (Bertrand lens out) with optics.relief on, in plane light (relief, outlines,
+// cleavage cracks, pleochroism, focus and the aperture diaphragm) and between the polars (the
+// interference colours with the outlines and cracks relief adds). Everything else — a compensator
+// inserted with the analyzer in (the tracer has no accessory plate), the conoscopic view, an EBSD
+// map with opaque points, optics.relief = off — is the progressive renderer's (core/render), unchanged.
 #include <atomic>
 #include <functional>
 
