@@ -3,7 +3,9 @@
 // (today's plane-light image), degenerate modes along an optic axis, pleochroic Beer–Lambert.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -182,6 +184,43 @@ TEST(SpecimenPolarization, BiaxialSectionRetardationFromTheIndicatrix) {
   EXPECT_NEAR(I, crossed_closed_form(phi, so.n_fast, so.n_slow, L), 1e-6);
 }
 
+namespace {
+
+// The plate of (a'') rendered by `render` at `spp`: its mean colour against the spectral integral.
+struct PlateColour {
+  glm::dvec3 mean{0.0}, expected{0.0};
+  double de = 0.0, gamma_nm = 0.0;
+  int wavelengths = 0;
+};
+PlateColour plate_colour(pmsim::RenderImage (*render)(const pmsim::SpecimenScene&, const pmsim::PlaneLightOptions&,
+                                                      const std::function<void(const pmsim::RenderImage&)>&,
+                                                      pmsim::InterfaceCounters*, const std::atomic<bool>*),
+                         int spp) {
+  const double no = 1.54, ne = 1.56;
+  const pmsim::Crystal c = pmsim::Crystal::uniaxial_constant("plate", no, ne);
+  const auto s = flat_fragment(c, pmsim::uniaxial_orientation({std::sqrt(0.5), std::sqrt(0.5), 0.0}));
+  const double L = thickness_at(*s, 0.0, 0.0);
+  pmsim::PlaneLightOptions o;
+  o.width = o.height = 12;
+  o.um_per_px = 1.0;
+  o.objective_na = 0.05;
+  o.analyzer_in = true;
+  o.spp = spp;
+  const pmsim::RenderImage img = render(*s, o, nullptr, nullptr, nullptr);
+  PlateColour r;
+  r.wavelengths = img.wavelengths;
+  r.gamma_nm = (ne - no) * L * 1000.0;
+  for (int i = 0; i < o.width * o.height; ++i)
+    r.mean += glm::dvec3(img.xyz[3 * i], img.xyz[3 * i + 1], img.xyz[3 * i + 2]) / double(o.width * o.height);
+  for (double l = pmsim::kVisibleMinNm + 0.5; l < pmsim::kVisibleMaxNm; l += 1.0)
+    r.expected += crossed_closed_form(kPi / 4, no, ne, L, l) * pmsim::observer_weight(pmsim::Illuminant::D65, l);
+  const glm::dvec3 white = pmsim::illuminant_white_xyz(pmsim::Illuminant::D65);
+  r.de = pmsim::ciede2000(pmsim::xyz_to_lab(r.mean, white), pmsim::xyz_to_lab(r.expected, white));
+  return r;
+}
+
+}  // namespace
+
 // (a'') The converged colour: a plate of Γ ≈ 960 nm (second-order blue-green) at 45° between
 // crossed polars in white light (D65), rendered with the analyzer in (32 bands, λ stratified within
 // each), against XYZ = ∫ I(λ)·w(λ) dλ of the closed form at 1 nm. A 12 µm patch at the plate's
@@ -191,30 +230,11 @@ TEST(SpecimenPolarization, BiaxialSectionRetardationFromTheIndicatrix) {
 // and the rest sampling noise. Y within 0.005 (measured 0.0001–0.0008): a band-weight sum off by
 // 4% (1 nm steps that cover 12 of a band's 12.5 nm, the bug this caught) fails it.
 TEST(SpecimenPolarization, WhiteLightInterferenceColourConvergesToTheSpectralIntegral) {
-  const double no = 1.54, ne = 1.56;
-  const pmsim::Crystal c = pmsim::Crystal::uniaxial_constant("plate", no, ne);
-  const auto s = flat_fragment(c, pmsim::uniaxial_orientation({std::sqrt(0.5), std::sqrt(0.5), 0.0}));
-  const double L = thickness_at(*s, 0.0, 0.0);
-  pmsim::PlaneLightOptions o;
-  o.width = o.height = 12;
-  o.um_per_px = 1.0;
-  o.objective_na = 0.05;
-  o.analyzer_in = true;
-  o.spp = 256;
-  const pmsim::RenderImage img = pmsim::render_plane_light(*s, o);
-  glm::dvec3 mean(0.0);
-  for (int i = 0; i < o.width * o.height; ++i)
-    mean += glm::dvec3(img.xyz[3 * i], img.xyz[3 * i + 1], img.xyz[3 * i + 2]) / double(o.width * o.height);
-  glm::dvec3 expected(0.0);
-  for (double l = pmsim::kVisibleMinNm + 0.5; l < pmsim::kVisibleMaxNm; l += 1.0)
-    expected += crossed_closed_form(kPi / 4, no, ne, L, l) * pmsim::observer_weight(pmsim::Illuminant::D65, l);
-  const glm::dvec3 white = pmsim::illuminant_white_xyz(pmsim::Illuminant::D65);
-  const double de = pmsim::ciede2000(pmsim::xyz_to_lab(mean, white), pmsim::xyz_to_lab(expected, white));
-  RecordProperty("delta_e00", std::to_string(de));
-  EXPECT_EQ(img.wavelengths, pmsim::kCrossedPolarBands);
-  EXPECT_NEAR(mean.y, expected.y, 0.005);
-  EXPECT_LT(de, 1.0) << "Γ " << (ne - no) * L * 1000.0 << " nm; rendered Y " << mean.y << ", closed form Y "
-                     << expected.y;
+  const PlateColour r = plate_colour(pmsim::render_plane_light, 256);
+  RecordProperty("delta_e00", std::to_string(r.de));
+  EXPECT_EQ(r.wavelengths, pmsim::kCrossedPolarBands);
+  EXPECT_NEAR(r.mean.y, r.expected.y, 0.005);
+  EXPECT_LT(r.de, 1.0) << "Γ " << r.gamma_nm << " nm; rendered Y " << r.mean.y << ", closed form Y " << r.expected.y;
 }
 
 // (a'', forward) The same plate's colour rendered forward from the condenser, as the thin sections
@@ -223,29 +243,11 @@ TEST(SpecimenPolarization, WhiteLightInterferenceColourConvergesToTheSpectralInt
 // sampling within the bands: measured ΔE00 0.38, 0.23, 0.42 (seeds 1–3) at 64 traces a pixel
 // (22 passes), against the backward renderer's 0.28–0.44 at 256.
 TEST(SpecimenPolarization, ForwardWhiteLightInterferenceColourConvergesToTheSpectralIntegral) {
-  const double no = 1.54, ne = 1.56;
-  const pmsim::Crystal c = pmsim::Crystal::uniaxial_constant("plate", no, ne);
-  const auto s = flat_fragment(c, pmsim::uniaxial_orientation({std::sqrt(0.5), std::sqrt(0.5), 0.0}));
-  const double L = thickness_at(*s, 0.0, 0.0);
-  pmsim::PlaneLightOptions o;
-  o.width = o.height = 12;
-  o.um_per_px = 1.0;
-  o.objective_na = 0.05;
-  o.analyzer_in = true;
-  o.spp = 64;
-  const pmsim::RenderImage img = pmsim::render_plane_light_forward(*s, o);
-  glm::dvec3 mean(0.0);
-  for (int i = 0; i < o.width * o.height; ++i)
-    mean += glm::dvec3(img.xyz[3 * i], img.xyz[3 * i + 1], img.xyz[3 * i + 2]) / double(o.width * o.height);
-  glm::dvec3 expected(0.0);
-  for (double l = pmsim::kVisibleMinNm + 0.5; l < pmsim::kVisibleMaxNm; l += 1.0)
-    expected += crossed_closed_form(kPi / 4, no, ne, L, l) * pmsim::observer_weight(pmsim::Illuminant::D65, l);
-  const glm::dvec3 white = pmsim::illuminant_white_xyz(pmsim::Illuminant::D65);
-  const double de = pmsim::ciede2000(pmsim::xyz_to_lab(mean, white), pmsim::xyz_to_lab(expected, white));
-  RecordProperty("delta_e00", std::to_string(de));
-  EXPECT_EQ(img.wavelengths, pmsim::kCrossedPolarBands);
-  EXPECT_NEAR(mean.y, expected.y, 0.005);
-  EXPECT_LT(de, 1.0) << "rendered Y " << mean.y << ", closed form Y " << expected.y;
+  const PlateColour r = plate_colour(pmsim::render_plane_light_forward, 64);
+  RecordProperty("delta_e00", std::to_string(r.de));
+  EXPECT_EQ(r.wavelengths, pmsim::kCrossedPolarBands);
+  EXPECT_NEAR(r.mean.y, r.expected.y, 0.005);
+  EXPECT_LT(r.de, 1.0) << "Γ " << r.gamma_nm << " nm; rendered Y " << r.mean.y << ", closed form Y " << r.expected.y;
 }
 
 // (b) Energy: every Fresnel event, of either mode, conserves R + T = 1 to rounding (1e-12

@@ -13,12 +13,12 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "core/base/units.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 #include "core/specimen/jones_path.h"
+#include "core/specimen/plane_light_passes.h"
 #include "core/specimen/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
 
@@ -231,24 +231,7 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
       img.converged = false;
       return img;
     }
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-      for (int y = rows.begin(); y < rows.end(); ++y) {
-        const double cy = std::clamp((y + 0.5) / f - 0.5, 0.0, ch - 1.0);
-        const int y0 = std::min(int(cy), ch - 1), y1 = std::min(y0 + 1, ch - 1);
-        const double ty = cy - y0;
-        for (int x = 0; x < w; ++x) {
-          const double cx = std::clamp((x + 0.5) / f - 0.5, 0.0, cw - 1.0);
-          const int x0 = std::min(int(cx), cw - 1), x1 = std::min(x0 + 1, cw - 1);
-          const double tx = cx - x0;
-          const auto at = [&](int xx, int yy) { return coarse[std::size_t(yy) * cw + xx]; };
-          const double v = std::max(0.0,
-              (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1)));
-          const std::size_t pix = std::size_t(y) * w + x;
-          const glm::dvec3 xyz = v * open_xyz, rgb = v * open_rgb;
-          for (int k = 0; k < 3; ++k) img.xyz[pix * 3 + k] = float(xyz[k]), img.rgb[pix * 3 + k] = float(rgb[k]);
-        }
-      }
-    });
+    spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
     img.passes = 1;
     img.samples_per_pixel = 1.0 / (f * f);
     img.converged = false;
@@ -331,19 +314,7 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     // over at most 65536 pixels.
     std::optional<double> err;
     if (done >= 2 && done % 2 == 0) {
-      const std::size_t stride = npx / 65536 + 1;
-      const std::size_t m = (npx + stride - 1) / stride;
-      const double sum = tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, m, 256), 0.0,
-          [&](const tbb::blocked_range<std::size_t>& r, double acc) {
-            for (std::size_t i = r.begin(); i < r.end(); ++i) {
-              const std::size_t pix = i * stride;
-              acc += ciede2000(xyz_to_lab(develop(pix, done, 0), white), xyz_to_lab(develop(pix, done, 1), white));
-            }
-            return acc;
-          },
-          std::plus<double>());
-      err = sum / double(m);
+      err = split_half_de2000(npx, [&](std::size_t pix, int hf) { return develop(pix, done, hf); }, white);
     }
     if (err) last_err = err;
     img.error_estimate = last_err;

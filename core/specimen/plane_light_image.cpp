@@ -12,11 +12,11 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "core/base/units.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "core/specimen/plane_light_passes.h"
 #include "core/specimen/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
 
@@ -291,40 +291,24 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
     const double cum = o.um_per_px * double(w) / cw;
     const auto cnear = pixels_near_fragments(scene, cw, ch, cum, centre, g.c, g.s, reach);
-    std::vector<float> coarse(std::size_t(cw) * ch, float(empty_ref));
+    std::vector<double> coarse(std::size_t(cw) * ch, empty_ref);
     tbb::parallel_for(tbb::blocked_range<int>(0, ch), [&](const tbb::blocked_range<int>& rows) {
       for (int py = rows.begin(); py < rows.end() && !cancelled(); ++py)
         for (int px = 0; px < cw; ++px) {
           const std::size_t pix = std::size_t(py) * cw + px;
           if (!cnear[pix]) continue;
           const SampleDims d = kronecker(pixel_shift(o.seed ^ 0x5eedull, pix, 0), 0);
-          coarse[pix] = float(stratum_weight[0] *
-                              sample_path(scene, g, point_of(px, py, d.v[0], d.v[1], cum, cw, ch), 0, lambda_ref,
-                                          d.v[2], d.v[3], g.analyzer_in, nullptr) /
-                              background_ref);
+          coarse[pix] = stratum_weight[0] *
+                        sample_path(scene, g, point_of(px, py, d.v[0], d.v[1], cum, cw, ch), 0, lambda_ref, d.v[2],
+                                    d.v[3], g.analyzer_in, nullptr) /
+                        background_ref;
         }
     });
     if (cancelled()) {
       img.converged = false;
       return img;
     }
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-      for (int y = rows.begin(); y < rows.end(); ++y) {
-        const double cy = std::clamp((y + 0.5) / f - 0.5, 0.0, ch - 1.0);
-        const int y0 = std::min(int(cy), ch - 1), y1 = std::min(y0 + 1, ch - 1);
-        const double ty = cy - y0;
-        for (int x = 0; x < w; ++x) {
-          const double cx = std::clamp((x + 0.5) / f - 0.5, 0.0, cw - 1.0);
-          const int x0 = std::min(int(cx), cw - 1), x1 = std::min(x0 + 1, cw - 1);
-          const double tx = cx - x0;
-          const auto at = [&](int xx, int yy) { return double(coarse[std::size_t(yy) * cw + xx]); };
-          const double v = (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
-          const std::size_t pix = std::size_t(y) * w + x;
-          const glm::dvec3 xyz = v * open_xyz, rgb = v * open_rgb;
-          for (int c = 0; c < 3; ++c) img.xyz[pix * 3 + c] = float(xyz[c]), img.rgb[pix * 3 + c] = float(rgb[c]);
-        }
-      }
-    });
+    spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
     img.passes = 1;
     img.samples_per_pixel = 1.0 / (f * f);
     img.converged = false;
@@ -436,19 +420,8 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     if (na == 0) {
       err = 0.0;
     } else if (done >= min_passes_for_estimate && done % 2 == 0) {
-      const std::size_t stride = na / 65536 + 1;
-      const std::size_t m = (na + stride - 1) / stride;
-      const double sum = tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, m, 256), 0.0,
-          [&](const tbb::blocked_range<std::size_t>& r, double acc) {
-            for (std::size_t i = r.begin(); i < r.end(); ++i) {
-              const std::size_t a = i * stride;
-              acc += ciede2000(xyz_to_lab(develop(a, done, 0), white), xyz_to_lab(develop(a, done, 1), white));
-            }
-            return acc;
-          },
-          std::plus<double>());
-      err = (sum / double(m)) * (double(na) / double(npx));
+      err = split_half_de2000(na, [&](std::size_t a, int hf) { return develop(a, done, hf); }, white) *
+            (double(na) / double(npx));
     }
     // An odd pass keeps the last even pass's estimate (the halves are only balanced after even ones).
     if (err) last_err = err;
