@@ -309,9 +309,6 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
       return img;
     }
     spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
-    img.passes = 1;
-    img.samples_per_pixel = 1.0 / (f * f);
-    img.converged = false;
     img.time_ms = elapsed_ms();
     if (progress) progress(img);
   }

@@ -31,6 +31,9 @@ void spread_preview(const std::vector<double>& coarse, int cw, int ch, int f, co
       }
     }
   });
+  img.passes = 1;
+  img.samples_per_pixel = 1.0 / (f * f);
+  img.converged = false;
 }
 
 double split_half_de2000(std::size_t n, const std::function<glm::dvec3(std::size_t, int)>& half_xyz,

@@ -13,7 +13,8 @@
 namespace pmsim {
 
 // Spreads a grey image of cw × ch (1/f of img's size, row-major) bilinearly over img, each pixel
-// v·open_xyz and v·open_rgb (v ≥ 0: a splatted estimate may undershoot 0).
+// v·open_xyz and v·open_rgb (v ≥ 0: a splatted estimate may undershoot 0); img then counts one
+// pass of 1/f² samples a pixel, not converged.
 void spread_preview(const std::vector<double>& coarse, int cw, int ch, int f, const glm::dvec3& open_xyz,
                     const glm::dvec3& open_rgb, RenderImage& img);
 
