@@ -6,7 +6,9 @@
 # aperture diaphragm stopped down; and almandine ("garnet") in a liquid of 1.54 at 10x. 240 x 240,
 # into docs/images/. STAGE_X/STAGE_Y (mm) put a fragment at the centre (the defaults: an oval
 # fragment about 110 µm long of the fixed mount, chosen by eye); FOCUS (µm) the defocus; last, the
-# quartz mount between crossed polars at the same place.
+# quartz mount between crossed polars at the same place. The Becke sequence is exposed one stop
+# down (render.exposure_ev=-1: the empty field mid-grey) so that the Becke line's light above the
+# empty field's does not clip to the same white.
 # Usage: scripts/becke_images.sh [BUILD_DIR]   (default: build)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -20,7 +22,7 @@ for nd in 1.54 1.66; do
   for f in "-$focus" 0 "+$focus"; do
     name=$( [ "$f" = 0 ] && echo 0 || { [ "${f:0:1}" = - ] && echo minus || echo plus; } )
     "$render" "${common[@]}" --set 'sample.crystal={"no":1.60,"ne":1.60}' \
-      --set sample.medium_index="$nd" --set focus_um="${f#+}" \
+      --set sample.medium_index="$nd" --set focus_um="${f#+}" --set render.exposure_ev=-1 \
       --out "$out/becke_n160_in_${nd/./}_focus_${name}.png"
   done
 done
