@@ -215,9 +215,10 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   // The preview: 1/f of the size, one pass at λ_ref, grey, spread bilinearly.
   const glm::dvec3 open_xyz = mono ? white : bands.sum;
   const glm::dvec3 open_rgb = mono ? glm::dvec3(1.0) : xyz_to_linear_srgb(bands.sum);
-  // At most ~96 source pixels across (a 512² image: 1/6), so that it comes within ~50 ms on 2
-  // cores through a slab of 1.5 M triangles (measured: 1/4 of 512² took 185 ms of CPU).
-  const int f = o.preview_factor > 1 ? std::max(o.preview_factor, int(std::ceil(std::max(w, h) / 96.0))) : 0;
+  // At most ~80 source pixels across (a 512² image: 1/7), so that it comes within 50 ms on 2
+  // idle cores through the granite slab's 1.5 M triangles (measured at 512²: 1/6 took 51 ms wall,
+  // 116 ms CPU).
+  const int f = o.preview_factor > 1 ? std::max(o.preview_factor, int(std::ceil(std::max(w, h) / 80.0))) : 0;
   if (f > 1 && w >= 2 * f && h >= 2 * f) {
     const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
     const double cum = o.um_per_px * double(w) / cw;

@@ -37,7 +37,7 @@
 // chroma subsampling) and complete after one pass, for 1 + 8/9 traces a pixel a pass.
 //
 // Split half (an estimate after 2 passes), tolerance stop, spp (traces a pixel: 1.89 a pass in
-// white light), preview (grey, at the reference λ; 1/factor of the size or smaller, at most ~96
+// white light), preview (grey, at the reference λ; 1/factor of the size or smaller, at most ~80
 // pixels across), cancel and progress: as render_plane_light.
 // Analyzer in is not traced forward: the branches' coherent sum needs the backward pairing.
 #include <atomic>
