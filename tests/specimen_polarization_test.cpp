@@ -162,7 +162,9 @@ TEST(SpecimenPolarization, ForwardPathsGiveTheSameCrossedPolarIntensity) {
       const double T_stack = vertical_forward(*s, 200.0, 0.0, false);
       const double I = vertical_forward(*s, 1.0, 2.0, true) / T_stack;
       EXPECT_NEAR(I, crossed_closed_form(phi, n_fast, n_slow, L), 1e-6) << "no " << pc.no << " φ " << phi_deg;
-      if (phi_deg == 0.0) EXPECT_LT(I, 1e-20);
+      if (phi_deg == 0.0) {
+        EXPECT_LT(I, 1e-20);
+      }
     }
   }
 }
