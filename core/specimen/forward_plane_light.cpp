@@ -71,7 +71,8 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   };
   const bool mono = o.single_wavelength_nm > 0.0;
   const int nb = mono ? 1 : std::max(o.analyzer_in ? kCrossedPolarBands : 1, o.bands);
-  const int kChromaPeriod = o.analyzer_in ? kChromaPeriodCrossed : kChromaPeriodPlane;
+  const int chroma_period =
+      o.chroma_period > 0 ? o.chroma_period : o.analyzer_in ? kChromaPeriodCrossed : kChromaPeriodPlane;
   const SpectralBands bands = spectral_bands(nb, o.illuminant, !mono);
   const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
   const double lambda_ref = mono ? o.single_wavelength_nm : 555.0;
@@ -149,13 +150,13 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   };
 
   // One pass over a ww × hh grid: every source pixel (with the margin) traces the reference
-  // rays[0], those of the subgrid of period kChromaPeriod also one ray of each band, rays[1 + b·K
+  // rays[0], those of the subgrid of period chroma_period also one ray of each band, rays[1 + b·K
   // + k] with k = (i + 2j) mod K at subgrid point (i, j) (K = kLambdasPerBand: each 2×2 block of
   // subgrid points takes the band's K stratified λ); each collected branch goes to
   // `splat(band + 1 or 0 for the reference, on the subgrid, image position, weight)`.
   const auto run_pass = [&](int ww, int hh, double um, double jx, double jy, const std::vector<PassRay>& rays,
                             const std::function<void(int, bool, const glm::dvec2&, double)>& splat) {
-    const int m = kChromaPeriod * (int(std::ceil(reach_um / um / kChromaPeriod)) + 1);
+    const int m = chroma_period * (int(std::ceil(reach_um / um / chroma_period)) + 1);
     const int sw = ww + 2 * m, sh = hh + 2 * m;
     tbb::parallel_for(tbb::blocked_range<int>(0, sh), [&](const tbb::blocked_range<int>& rows) {
       InterfaceCounters local;
@@ -164,9 +165,9 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
         if (cancelled()) break;
         for (int sx = 0; sx < sw; ++sx) {
           const glm::dvec2 q = to_specimen(sx - m + jx, sy - m + jy, um, ww, hh);
-          const bool sub = sx % kChromaPeriod == 0 && sy % kChromaPeriod == 0;
+          const bool sub = sx % chroma_period == 0 && sy % chroma_period == 0;
           const std::size_t k_lambda =
-              std::size_t((sx / kChromaPeriod + 2 * (sy / kChromaPeriod)) % kLambdasPerBand);
+              std::size_t((sx / chroma_period + 2 * (sy / chroma_period)) % kLambdasPerBand);
           const std::size_t n_rays = sub ? 1 + (rays.size() - 1) / kLambdasPerBand : 1;
           for (std::size_t k = 0; k < n_rays; ++k) {
             const PassRay& r = k == 0 ? rays[0] : rays[1 + (k - 1) * kLambdasPerBand + k_lambda];
@@ -269,7 +270,7 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     return xyz;
   };
 
-  const double traces = mono ? 1.0 : 1.0 + double(nb) / (kChromaPeriod * kChromaPeriod);
+  const double traces = mono ? 1.0 : 1.0 + double(nb) / (chroma_period * chroma_period);
   const int passes = std::max(1, int(std::ceil(o.spp / traces - 1e-9)));
   std::optional<double> last_err;
   for (int pass = 0; pass < passes; ++pass) {
@@ -289,10 +290,10 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
     run_pass(w, h, o.um_per_px, d.v[0], d.v[1], rays, [&](int k, bool sub, const glm::dvec2& p, double v) {
       if (k == 0) {
         tent(p, 1, w, h, [&](std::size_t i, double wt) { atomic_add(ref[i], v * wt); });
-        if (sub && rsub) tent(p, kChromaPeriod, w, h, [&](std::size_t i, double wt) { atomic_add(rsub[i], v * wt); });
+        if (sub && rsub) tent(p, chroma_period, w, h, [&](std::size_t i, double wt) { atomic_add(rsub[i], v * wt); });
       } else {
         const std::size_t b = std::size_t(k - 1);
-        tent(p, kChromaPeriod, w, h,
+        tent(p, chroma_period, w, h,
              [&](std::size_t i, double wt) { atomic_add(bsub[i * std::size_t(nb) + b], v * wt); });
       }
     });

@@ -102,6 +102,10 @@ struct PlaneLightOptions {
   int spp = 64;                     // traced paths per pixel in all (rounded up to whole passes)
   double tolerance_de2000 = 0.0;    // > 0: stop once the split-half estimate is below it
   int preview_factor = 0;           // > 1: a first image at 1/factor of the size (see above)
+  // Forward renderer only (forward_plane_light.h): the period of the subgrid the bands are traced
+  // from; 0 = its default (3 in plane light, 4 with the analyzer in), 1 = every point (the colour
+  // at full resolution: a reference free of the default's chroma blur, at 9 or 33 traces a pixel).
+  int chroma_period = 0;
   std::uint64_t seed = 1;
 };
 
