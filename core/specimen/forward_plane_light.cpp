@@ -8,6 +8,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -58,6 +59,30 @@ struct PassRay {
 };
 
 }  // namespace
+
+std::string forward_model_report(bool analyzer_in) {
+  return analyzer_in ? "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode splitting, "
+                       "coherent sum at the analyzer, tent splats), analyzer in"
+                     : "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode splitting, "
+                       "tent splats), plane-polarized light";
+}
+
+RenderImage render_plane_light_forward_as(const std::string& report, const SpecimenScene& scene,
+                                          const PlaneLightOptions& options,
+                                          const std::function<void(const RenderImage&)>& progress,
+                                          const std::atomic<bool>* cancel) {
+  RenderImage img = render_plane_light_forward(
+      scene, options,
+      [&](const RenderImage& i) {
+        if (!progress) return;
+        RenderImage copy = i;
+        copy.model_report = report;
+        progress(copy);
+      },
+      nullptr, cancel);
+  img.model_report = report;
+  return img;
+}
 
 RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLightOptions& o,
                                        const std::function<void(const RenderImage&)>& progress,
@@ -132,10 +157,7 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   img.rgb.assign(npx * 3, 0.0f);
   img.xyz.assign(npx * 3, 0.0f);
   img.wavelengths = nb;
-  img.model_report = o.analyzer_in ? "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
-                                     "splitting, coherent sum at the analyzer, tent splats), analyzer in"
-                                   : "forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
-                                     "splitting, tent splats), plane-polarized light";
+  img.model_report = forward_model_report(o.analyzer_in);
   std::mutex counter_mutex;
 
   // Specimen point of image position (fx, fy) (pixels from the top left) on a grid of ww × hh

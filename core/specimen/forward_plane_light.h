@@ -42,6 +42,7 @@
 // Analyzer in is not traced forward: the branches' coherent sum needs the backward pairing.
 #include <atomic>
 #include <functional>
+#include <string>
 
 #include "core/render/render_image.h"
 #include "core/specimen/plane_light_image.h"
@@ -49,10 +50,20 @@
 
 namespace pmsim {
 
-// Throws std::invalid_argument with the analyzer in or the scalar tracer asked for.
+// Throws std::invalid_argument with the scalar tracer asked for.
 RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLightOptions& options,
                                        const std::function<void(const RenderImage&)>& progress = nullptr,
                                        InterfaceCounters* counters = nullptr,
                                        const std::atomic<bool>* cancel = nullptr);
+
+// What the renderer says of its model (RenderImage::model_report), with the analyzer in or out.
+std::string forward_model_report(bool analyzer_in);
+
+// The same render with `report` as the model_report of every image it gives (a specimen's own
+// words for what it became, e.g. "thin section slab: " + forward_model_report(...)).
+RenderImage render_plane_light_forward_as(const std::string& report, const SpecimenScene& scene,
+                                          const PlaneLightOptions& options,
+                                          const std::function<void(const RenderImage&)>& progress,
+                                          const std::atomic<bool>* cancel);
 
 }  // namespace pmsim

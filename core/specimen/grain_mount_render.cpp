@@ -92,21 +92,8 @@ RenderImage render_grain_mount(const Scene& scene, const std::function<void(cons
   // mount it reached a split-half estimate below 1 in 0.68 s (mean ΔE00 0.44), where backward
   // from the pixels took 7.2 s for 4.3 at its 256-path cap.
   const PlaneLightOptions o = plane_light_options(scene);
-  const std::string report = o.analyzer_in ? "grain mount: forward-traced refraction from the condenser (Embree, exact "
-                                             "Fresnel, eigenmode splitting, coherent sum at the analyzer), analyzer in"
-                                           : "grain mount: forward-traced refraction from the condenser (Embree, exact "
-                                             "Fresnel, eigenmode splitting), plane-polarized light";
-  RenderImage img = render_plane_light_forward(
-      *specimen, o,
-      [&](const RenderImage& i) {
-        if (!progress) return;
-        RenderImage copy = i;
-        copy.model_report = report;
-        progress(copy);
-      },
-      nullptr, cancel);
-  img.model_report = report;
-  return img;
+  return render_plane_light_forward_as("grain mount: " + forward_model_report(o.analyzer_in), *specimen, o, progress,
+                                       cancel);
 }
 
 }  // namespace pmsim

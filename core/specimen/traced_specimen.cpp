@@ -30,26 +30,11 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
   const std::shared_ptr<const SpecimenScene> slab = section_slab(scene);
   // Traced forward from the condenser's cone, with the analyzer in or out: it converges far
   // faster than backward (forward_plane_light.h).
-  std::string report =
-      scene.analyzer_in
-          ? "thin section slab: forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
-            "splitting, coherent sum at the analyzer, tent splats), analyzer in"
-          : "thin section slab: forward-traced refraction from the condenser (Embree, exact Fresnel, eigenmode "
-            "splitting, tent splats), plane-polarized light";
+  std::string report = "thin section slab: " + forward_model_report(scene.analyzer_in);
   // An EBSD map: what it became, as the flat image's report says.
   if (const MapSectionFacts* f = map_section_facts(*load_scene_section(scene)))
     report += "; " + map_section_summary(*f);
-  RenderImage img = render_plane_light_forward(
-      *slab, plane_light_options(scene),
-      [&](const RenderImage& i) {
-        if (!progress) return;
-        RenderImage copy = i;
-        copy.model_report = report;
-        progress(copy);
-      },
-      nullptr, cancel);
-  img.model_report = report;
-  return img;
+  return render_plane_light_forward_as(report, *slab, plane_light_options(scene), progress, cancel);
 }
 
 }  // namespace pmsim
