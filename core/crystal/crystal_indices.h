@@ -9,6 +9,7 @@ struct CrystalIndices {  // {"no":..,"ne":..} or {"nalpha":..,"nbeta":..,"ngamma
   bool uniaxial = true;
   double no = 1.544, ne = 1.553;                   // uniaxial
   double nalpha = 1.5, nbeta = 1.5, ngamma = 1.5;  // biaxial
+  bool operator==(const CrystalIndices&) const = default;
 };
 
 // n ∈ (1, 5]: below 1 is not a dielectric at optical frequencies; above 5 is no mineral (the

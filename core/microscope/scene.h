@@ -35,6 +35,7 @@ enum class RenderStrategy { Auto, Modal, Exact };  // render.strategy: auto|moda
 struct ObjectiveSettings {
   double magnification = 10.0;  // objective.magnification
   double na = 0.25;             // objective.na
+  bool operator==(const ObjectiveSettings&) const = default;
 };
 
 // The eyepiece's field number: the diameter (mm) of its field stop, i.e. of the field seen in the
@@ -42,6 +43,7 @@ struct ObjectiveSettings {
 // (core/microscope/view_geometry.h).
 struct EyepieceSettings {
   double field_number_mm = 20.0;  // eyepiece.field_number_mm
+  bool operator==(const EyepieceSettings&) const = default;
 };
 
 // The mechanical stage: the point of the thin section under the crosshair, in section
@@ -50,6 +52,7 @@ struct EyepieceSettings {
 struct StageSettings {
   double x_mm = 0.0;  // stage.x_mm
   double y_mm = 0.0;  // stage.y_mm
+  bool operator==(const StageSettings&) const = default;
 };
 
 struct CondenserSettings {
@@ -57,6 +60,7 @@ struct CondenserSettings {
   // condenser.aperture_na: the aperture diaphragm in orthoscopic mode, the NA of the cone of
   // light reaching the specimen (0: parallel light, the diaphragm stopped down; core/specimen).
   double aperture_na = 0.0;
+  bool operator==(const CondenserSettings&) const = default;
 };
 
 // sample.cut: a plate cut along a crystal plane of a library mineral with unit-cell and optical-
@@ -66,6 +70,7 @@ struct CondenserSettings {
 struct SampleCut {
   std::string plane;  // "(hkl)"
   std::string north;  // "[uvw]"
+  bool operator==(const SampleCut&) const = default;
 };
 
 struct SampleSettings {
@@ -88,6 +93,7 @@ struct SampleSettings {
   // dispersion of the liquid series in assets/liquids (core/specimen/immersion_liquid.h).
   // Unset: the mount uses 1.54.
   std::optional<double> medium_index;
+  bool operator==(const SampleSettings&) const = default;
 };
 
 struct RenderSettings {
@@ -104,6 +110,7 @@ struct RenderSettings {
   // render.exposure_ev: stops of exposure of 8-bit outputs (PNG, the app's field), image × 2^ev
   // before encoding (core/render/exposure.h); −10…10, 0 as rendered.
   double exposure_ev = 0.0;
+  bool operator==(const RenderSettings&) const = default;
 };
 
 struct OpticsSettings {
@@ -114,6 +121,7 @@ struct OpticsSettings {
   // a compensator) is traced as a refracting 3-D slab (core/specimen/traced_specimen.h): relief,
   // outlines, cleavage, focus. Off: the flat section image of the progressive renderer.
   bool relief = true;
+  bool operator==(const OpticsSettings&) const = default;
 };
 
 struct Scene {
@@ -137,6 +145,7 @@ struct Scene {
   double compensator_position = 0.0;            // compensator_position 0…1 (quartz wedge)
   RenderSettings render;
   OpticsSettings optics;
+  bool operator==(const Scene&) const = default;
 };
 
 }  // namespace pmsim

@@ -18,6 +18,11 @@ struct RenderImage {
   // be compared (a preview, the first pass of a progressive render).
   std::optional<double> error_estimate;
   bool converged = false;        // estimate below the scene's tolerance, or spp/wavelengths reached
+  // Why the render ended (empty while it runs): "tolerance" (the estimate fell below
+  // render.tolerance: converged), "cap" (render.spp / render.wavelengths or a renderer's own cap
+  // was reached first: `converged` is then false unless the estimate is below the tolerance too),
+  // "cancelled".
+  std::string stopped;
   double time_ms = 0.0;          // wall time since the last restart
   std::uint64_t generation = 0;  // increments with every restart()
   std::string model_report;      // which model each element uses, e.g. "objective: ideal (err 0.02)"

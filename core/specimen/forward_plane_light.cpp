@@ -18,6 +18,7 @@
 #include "core/base/units.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "core/specimen/forward_source.h"
 #include "core/specimen/jones_path.h"
 #include "core/specimen/plane_light_passes.h"
 #include "core/specimen/spectral_bands.h"
@@ -35,28 +36,6 @@ constexpr int kChromaPeriodPlane = 3, kChromaPeriodCrossed = 4;
 // λ within a band: K values a pass, stratified (a shared jitter + k/K), one per subgrid point in
 // a 2×2 pattern, so a pixel's colour averages sin²(πΓ/λ) over K points of each band a pass.
 constexpr int kLambdasPerBand = 4;
-
-glm::dvec3 rotate_z(const glm::dvec3& v, double c, double s) { return {c * v.x - s * v.y, s * v.x + c * v.y, v.z}; }
-
-template <class T>
-void atomic_add(T& slot, T v) {
-  std::atomic_ref<T>(slot).fetch_add(v, std::memory_order_relaxed);
-}
-
-// Where the focal plane z_air meets the line of a branch leaving the cover glass (the point the
-// objective images it onto).
-glm::dvec2 focal_point(const JonesExit& e, double z_air) {
-  const glm::dvec3 q = e.point + ((z_air - e.point.z) / e.dir.z) * e.dir;
-  return {q.x, q.y};
-}
-
-// One pass's ray: its direction and its λ's empty-stack shift and transmittance.
-struct PassRay {
-  glm::dvec3 dir{0.0, 0.0, 1.0};
-  double wavelength_nm = 555.0;
-  glm::dvec2 shift{0.0};  // focal point − start point in the empty stack
-  double empty_t = 0.0;   // the empty stack's collected power for this ray
-};
 
 }  // namespace
 
@@ -132,8 +111,7 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
   };
   const auto pass_ray = [&](double u1, double u2, double wavelength_nm) {
     PassRay r;
-    const double sin_t = nac * std::sqrt(u1), phi = 2.0 * kPi * u2;
-    r.dir = {sin_t * std::cos(phi), sin_t * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - sin_t * sin_t))};
+    r.dir = cone_direction(nac, u1, u2);
     r.wavelength_nm = wavelength_nm;
     // The exposure: the empty field with the analyzer out is 1.
     const JonesPath p = trace(empty, {0.0, 0.0, z_source}, r, false, nullptr);
@@ -212,22 +190,8 @@ RenderImage render_plane_light_forward(const SpecimenScene& scene, const PlaneLi
       }
     });
   };
-  // Tent weights of radius r pixels of image position f on pixel centres, (1 − |Δx|/r)(1 − |Δy|/r):
-  // over a grid of period r they sum to 1 at every pixel.
-  const auto tent = [](const glm::dvec2& f, int r, int ww, int hh, const auto& add) {
-    const double ux = f.x - 0.5, uy = f.y - 0.5;
-    if (!(ux > -r && uy > -r && ux < ww - 1 + r && uy < hh - 1 + r)) return;
-    const int x_lo = std::max(0, int(std::floor(ux)) - r + 1), x_hi = std::min(ww - 1, int(std::floor(ux)) + r);
-    const int y_lo = std::max(0, int(std::floor(uy)) - r + 1), y_hi = std::min(hh - 1, int(std::floor(uy)) + r);
-    for (int y = y_lo; y <= y_hi; ++y) {
-      const double wy = 1.0 - std::abs(uy - y) / r;
-      if (wy <= 0.0) continue;
-      for (int x = x_lo; x <= x_hi; ++x) {
-        const double wx = 1.0 - std::abs(ux - x) / r;
-        if (wx > 0.0) add(std::size_t(y) * ww + x, wx * wy);
-      }
-    }
-  };
+  // Tent weights of radius r pixels on pixel centres (forward_source.h).
+  const auto tent = [](const glm::dvec2& f, int r, int ww, int hh, const auto& add) { tent_splat(f, r, ww, hh, 0.5, add); };
 
   SampleDims shift;
   {

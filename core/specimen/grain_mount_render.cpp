@@ -85,6 +85,8 @@ std::shared_ptr<const SpecimenScene> cached_specimen(const Scene& scene) {
 
 }  // namespace
 
+std::shared_ptr<const SpecimenScene> grain_mount_specimen_cached(const Scene& scene) { return cached_specimen(scene); }
+
 RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress,
                                const std::atomic<bool>* cancel) {
   const auto specimen = cached_specimen(scene);

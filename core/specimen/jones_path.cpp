@@ -96,14 +96,30 @@ void count_event(InterfaceCounters* c, double incident, double reflected, double
     c->max_defect = std::max(c->max_defect, std::abs(incident - reflected - transmitted) / incident);
 }
 
+// s and p0 of the aplanatic map for direction d (any pair at d = ±ẑ, where the map is the identity).
+void aplanatic_axes(const glm::dvec3& d, glm::dvec3& s, glm::dvec3& p0, glm::dvec3& p) {
+  const glm::dvec3 c(-d.y, d.x, 0.0);  // ẑ × d
+  const double l = std::sqrt(c.x * c.x + c.y * c.y);
+  s = l > 1e-12 ? c / l : glm::dvec3(1.0, 0.0, 0.0);
+  p0 = glm::cross(s, glm::dvec3(0.0, 0.0, 1.0));
+  p = glm::cross(s, d);
+  if (d.z < 0.0) p = -p;  // a downward ray: the same map with the lens on the other side
+}
+
 }  // namespace
+
+glm::dvec3 aplanatic_map(const glm::dvec3& v, const glm::dvec3& d) {
+  glm::dvec3 s, p0, p;
+  aplanatic_axes(d, s, p0, p);
+  return glm::dot(v, s) * s + glm::dot(v, p0) * p;
+}
 
 JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathRequest& q, InterfaceCounters* counters) {
   JonesPath out;
   if (counters) ++counters->paths;
   const double lambda = q.wavelength_nm;
   const double k0 = 2.0 * kPi / (lambda * 1e-3);  // per µm
-  const int starts = q.starts > 1 ? 2 : 1;
+  const int starts = q.forward_jones || q.starts > 1 ? 2 : 1;
 
   Branch b0;
   b0.dir = glm::normalize(q.dir);
@@ -115,6 +131,10 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
   a0 = glm::length(a0) > 1e-12 ? glm::normalize(a0) : s_axis(b0.dir, glm::dvec3(0, 0, 1));
   b0.E[0] = real_vec(a0);
   b0.E[1] = real_vec(glm::cross(b0.dir, a0));
+  if (q.forward_jones) {
+    b0.E[0] = real_vec(aplanatic_map({1.0, 0.0, 0.0}, b0.dir));
+    b0.E[1] = real_vec(aplanatic_map({0.0, 1.0, 0.0}, b0.dir));
+  }
   // The lit branches, summed at the end with their mutual coherence.
   struct Lit {
     cd amp[2];
@@ -154,7 +174,20 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
             JonesExit& e = out.exits[std::size_t(i)];
             e.point = b.events > 0 ? b.surface : b.origin;
             e.dir = b.dir;
-            if (q.forward_analyzer_in) {
+            if (q.forward_jones) {
+              const double phase = b.phase_rad - k0 * b.n * glm::dot(b.dir, e.point - x_start);
+              const cd ph = std::polar(1.0, phase);
+              glm::dvec3 s, p0, p;
+              aplanatic_axes(b.dir, s, p0, p);
+              // Back into the collimated space: the s and p components keep their amplitudes.
+              for (int k = 0; k < 2; ++k) {
+                const cd fs = ph * dot(s, b.E[k]), fp = ph * dot(p, b.E[k]);
+                e.jones[std::size_t(k)] = fs * s.x + fp * p0.x;
+                e.jones[std::size_t(2 + k)] = fs * s.y + fp * p0.y;
+              }
+              e.power = 0.5 * (power(b.E[0]) + power(b.E[1]));
+              crystal_um = std::max(crystal_um, b.crystal_um);
+            } else if (q.forward_analyzer_in) {
               glm::dvec3 a = q.forward_analyzer - glm::dot(q.forward_analyzer, b.dir) * b.dir;
               const double al = glm::length(a);
               // The plane wave leaving along the branch: its phase at the exit point.
@@ -371,7 +404,8 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
       for (int k = 0; k < starts; ++k) out.power[k] += 2.0 * gamma * std::real(li.amp[k] * std::conj(lj.amp[k]));
     }
   for (int k = 0; k < starts; ++k) out.power[k] = std::max(0.0, out.power[k]);
-  if (q.forward) {
+  out.k0_crystal_um = k0 * crystal_um;
+  if (q.forward && !q.forward_jones) {
     // Forward: each exit's share of the coherent sum (see JonesPathRequest::forward_analyzer_in).
     out.power[0] = 0.0;
     for (int i = 0; i < out.n_exits; ++i) {

@@ -45,6 +45,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/optics/mueller.h"
+
 #include "core/specimen/specimen_scene.h"
 #include "core/specimen/specimen_tracer.h"
 
@@ -76,13 +78,27 @@ struct JonesPathRequest {
   // is splatted where its own branch lands (γ = 1 for a plate's two waves, which land together).
   bool forward_analyzer_in = false;
   glm::dvec3 forward_analyzer{0.0, 1.0, 0.0};
+  // Forward, for the specimen response (forward_response.h): both input vibrations x and y (the
+  // frame's), carried into the ray by the condenser's aplanatic map (aplanatic_map below), and
+  // every exit keeps its Jones matrix, mapped back into the objective's collimated space; the
+  // scoring (each exit's Mueller share) is the caller's. start_vibration, starts and the
+  // forward analyzer are not used.
+  bool forward_jones = false;
 };
+
+// The aplanatic map of a lens between its collimated space and a ray along unit d (up or down):
+// the component along s = unit(ẑ × d) is kept, the one along p0 = s × ẑ becomes p = s × d
+// (Richards & Wolf 1959; docs/physics.md). v is a vector of the collimated space (z = 0).
+glm::dvec3 aplanatic_map(const glm::dvec3& v, const glm::dvec3& d);
 
 // A forward path's branch leaving the cover glass toward the objective.
 struct JonesExit {
   glm::dvec3 point{0.0};  // on the cover glass's top face
   glm::dvec3 dir{0.0};    // unit, up
   double power = 0.0;     // |E|², of the unit power that entered (analyzer in: see above; may be < 0)
+  // forward_jones: the exit's Jones matrix (columns: input x, y; rows: output x, y of the
+  // objective's collimated space), with the plane-wave phase of the branch at its exit point.
+  Jones2 jones{};
 };
 
 struct JonesPath {
@@ -93,6 +109,9 @@ struct JonesPath {
   int interfaces = 0;                   // Fresnel events over all branches
   std::array<JonesExit, kMaxJonesLeaves> exits{};  // forward: the branches the objective collects
   int n_exits = 0;
+  // k0·L of the longest crystal path: exits e, f of one path interfere with the coherence
+  // γ = exp(−k0·L·|d_e − d_f|²) (see the top of this file).
+  double k0_crystal_um = 0.0;
   double intensity(int starts) const {
     return starts > 1 ? power[0] + power[1] : power[0];
   }

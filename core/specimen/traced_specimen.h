@@ -11,6 +11,7 @@
 
 #include "core/microscope/scene.h"
 #include "core/render/render_image.h"
+#include "core/specimen/forward_response.h"
 
 namespace pmsim {
 
@@ -18,5 +19,24 @@ bool is_traced_specimen(const Scene& scene);
 // `cancel` (optional): as render_plane_light's. Throws for a scene is_traced_specimen refuses.
 RenderImage render_traced_specimen(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
                                    const std::atomic<bool>* cancel = nullptr);
+
+// The response/instrument split (specimen_response.h): a traced specimen's response, rendered
+// progressively (the callback sees each developed state), to be composed at any instrument
+// setting. Field: the scene's image only (a single render); Disc: everything the field sweeps as
+// the stage turns (the app, a stage sweep).
+ResponseProgress render_traced_response(const Scene& scene, ResponseCoverage coverage,
+                                        const std::function<void(const ResponseProgress&)>& progress = nullptr,
+                                        const std::atomic<bool>* cancel = nullptr);
+
+// Whether a response rendered for `rendered` serves `next` as it is: they differ only in the
+// instrument (stage angle, polarizer, analyzer, accessory, wedge position) and in the exposure.
+// A stage angle away from the response's frame needs coverage Disc.
+bool same_specimen_response(const Scene& rendered, const Scene& next);
+
+// One image of a microscope scene, from whichever source the scene needs: a traced specimen's
+// response composed at the scene's settings, or the progressive renderer's flat image. What
+// pmsim-render, the app's export and the bench call.
+RenderImage render_microscope_scene(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
+                                    const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace pmsim

@@ -1,0 +1,218 @@
+#include "core/specimen/specimen_response.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/base/units.h"
+#include "core/microscope/compensator.h"
+#include "core/spectrum/color.h"
+#include "core/specimen/plane_light_passes.h"
+
+namespace pmsim {
+
+namespace {
+
+using Stokes = std::array<double, 4>;
+using Vec4 = std::array<double, 4>;
+
+// vᵀ·B·t for a 12-number block (rows I Q U V, columns I Q U) and t's first three entries.
+template <class T>
+double contract(const Vec4& v, const T* b, const Stokes& t) {
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    if (v[std::size_t(i)] == 0.0) continue;
+    sum += v[std::size_t(i)] * (double(b[3 * i]) * t[0] + double(b[3 * i + 1]) * t[1] + double(b[3 * i + 2]) * t[2]);
+  }
+  return sum;
+}
+
+// ½·Cᵀ·s: the analyzer's state seen through the accessory (I = ½ sᵀ C M t = (½ Cᵀ s)ᵀ M t).
+Vec4 through(const Mueller4& c, const Stokes& s) {
+  Vec4 v{};
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 4; ++i) v[std::size_t(k)] += 0.5 * c[std::size_t(4 * i + k)] * s[std::size_t(i)];
+  return v;
+}
+
+// The accessory's cos δ and sin δ averaged over a band (8 points across it): a band of 12.5 nm
+// is narrow against the period λ²/Γ of the accessory's own oscillation (≥ 60 nm for the wedge's
+// four orders at 380 nm), so the average is what the band's λ points would give.
+void band_retardance(const CompensatorPlate& plate, double lo_nm, double width_nm, double& c, double& s) {
+  constexpr int kPoints = 8;
+  c = s = 0.0;
+  for (int k = 0; k < kPoints; ++k) {
+    const double lambda = lo_nm + width_nm * (k + 0.5) / kPoints;
+    const double delta = 2.0 * kPi * compensator_retardation_nm(plate, lambda) / lambda;
+    c += std::cos(delta) / kPoints;
+    s += std::sin(delta) / kPoints;
+  }
+}
+
+// What a frame reads from the response: per grid point and per chroma node, the X, Y, Z (or the
+// grey) its block passes at the frame's settings, before resampling.
+struct FrameFields {
+  std::vector<float> grid;   // nx·ny × channels
+  std::vector<float> nodes;  // cnx·cny × 3
+  int channels = 1;
+};
+
+FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in) {
+  // The blocks' vibrations are the specimen's own x and y (the tracer's frame): a lab angle ψ is
+  // ψ − θ there.
+  const double rel = in.stage_rad;
+  const Stokes t = linear_stokes(in.polarizer_rad - rel);
+  // Analyzer out: the whole intensity, I = (M t)_0 = ½·(2, 0, 0, 0)·M·t.
+  const Stokes s = in.analyzer_in ? linear_stokes(in.analyzer_rad - rel) : Stokes{2.0, 0.0, 0.0, 0.0};
+  const bool mono = r.single_wavelength_nm > 0.0;
+  const int nb = r.bands.count();
+  const CompensatorPlate plate = make_compensator(in.compensator, in.compensator_position);
+  const bool accessory = in.analyzer_in && plate.present;
+  FrameFields f;
+  // Per band and channel, the analyzer's state through the accessory (×W_b); and for the
+  // reference block, their sums over the bands.
+  std::vector<std::array<Vec4, 3>> v_band(std::size_t(std::max(nb, 1)));
+  std::array<Vec4, 3> v_ref{};
+  if (mono) {
+    Mueller4 c = retarder_mueller(0.25 * kPi - rel, 0.0);
+    if (accessory)
+      c = retarder_mueller(0.25 * kPi - rel, 2.0 * kPi * compensator_retardation_nm(plate, r.single_wavelength_nm) /
+                                                 r.single_wavelength_nm);
+    v_ref[0] = through(c, s);
+  } else {
+    const RetarderTerms terms = retarder_terms(0.25 * kPi - rel);
+    for (int b = 0; b < nb; ++b) {
+      double cb = 1.0, sb = 0.0;
+      if (accessory) band_retardance(plate, r.bands.lo_nm[std::size_t(b)], r.bands.width_nm[std::size_t(b)], cb, sb);
+      Mueller4 c{};
+      for (std::size_t i = 0; i < 16; ++i) c[i] = terms.c0[i] + cb * terms.c1[i] + sb * terms.c2[i];
+      const Vec4 v = through(c, s);
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 4; ++i) {
+          const double w = r.bands.weight[std::size_t(b)][k];
+          v_band[std::size_t(b)][std::size_t(k)][std::size_t(i)] = w * v[std::size_t(i)];
+          v_ref[std::size_t(k)][std::size_t(i)] += w * v[std::size_t(i)];
+        }
+    }
+  }
+  f.channels = mono ? 1 : 3;
+  const std::size_t n = std::size_t(r.nx) * std::size_t(r.ny);
+  f.grid.assign(n * std::size_t(f.channels), 0.0f);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& rg) {
+    for (std::size_t g = rg.begin(); g < rg.end(); ++g)
+      for (int k = 0; k < f.channels; ++k)
+        f.grid[g * std::size_t(f.channels) + std::size_t(k)] =
+            float(contract(v_ref[std::size_t(k)], &r.ref[g * 12], t));
+  });
+  if (mono || r.delta.empty()) return f;
+  const std::size_t nn = std::size_t(r.cnx) * std::size_t(r.cny);
+  f.nodes.assign(nn * 3, 0.0f);
+  // Without an accessory every band sees the same analyzer: the colour-weighted blocks.
+  const Vec4 v_plain = {0.5 * s[0], 0.5 * s[1], 0.5 * s[2], 0.5 * s[3]};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nn, 256), [&](const tbb::blocked_range<std::size_t>& rg) {
+    for (std::size_t q = rg.begin(); q < rg.end(); ++q)
+      for (int k = 0; k < 3; ++k) {
+        double sum = 0.0;
+        if (!accessory) {
+          sum = contract(v_plain, &r.delta_xyz[(q * 3 + std::size_t(k)) * 12], t);
+        } else {
+          for (int b = 0; b < nb; ++b)
+            sum += contract(v_band[std::size_t(b)][std::size_t(k)], &r.delta[(q * std::size_t(nb) + std::size_t(b)) * 12], t);
+        }
+        f.nodes[q * 3 + std::size_t(k)] = float(sum);
+      }
+  });
+  return f;
+}
+
+// Bilinear sample of a field of w × h points (channels c, channel k) at (x, y) in point units;
+// points outside are extended from the edge.
+float bilinear(const std::vector<float>& v, int w, int h, int c, int k, double x, double y) {
+  x = std::clamp(x, 0.0, double(w - 1));
+  y = std::clamp(y, 0.0, double(h - 1));
+  const int x0 = std::min(int(x), w - 2 < 0 ? 0 : w - 2), y0 = std::min(int(y), h - 2 < 0 ? 0 : h - 2);
+  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+  const double fx = x - x0, fy = y - y0;
+  const auto at = [&](int i, int j) { return double(v[(std::size_t(j) * std::size_t(w) + std::size_t(i)) * std::size_t(c) + std::size_t(k)]); };
+  return float((1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1.0 - fx) * at(x0, y1) + fx * at(x1, y1)));
+}
+
+}  // namespace
+
+InstrumentSettings instrument_settings(const Scene& scene) {
+  InstrumentSettings in;
+  in.stage_rad = radians(scene.stage_deg);
+  in.polarizer_rad = radians(scene.polarizer_deg);
+  in.analyzer_in = scene.analyzer_in;
+  in.analyzer_rad = radians(scene.analyzer_deg);
+  in.compensator = scene.compensator;
+  in.compensator_position = scene.compensator_position;
+  return in;
+}
+
+RenderImage compose_response(const SpecimenResponse& r, const InstrumentSettings& in) {
+  RenderImage img;
+  const int w = r.image_width, h = r.image_height;
+  img.width = w;
+  img.height = h;
+  img.rgb.assign(std::size_t(w) * h * 3, 0.0f);
+  img.xyz.assign(std::size_t(w) * h * 3, 0.0f);
+  img.passes = r.passes;
+  img.samples_per_pixel = r.samples_per_pixel;
+  img.wavelengths = r.bands.count();
+  img.time_ms = r.time_ms;
+  img.model_report = r.model_report;
+  if (r.nx <= 0 || r.ny <= 0 || r.ref.empty()) return img;
+  const FrameFields f = contract_response(r, in);
+  const bool mono = r.single_wavelength_nm > 0.0;
+  const double rel = in.stage_rad - r.frame_stage_rad;
+  const double c = std::cos(rel), s = std::sin(rel);
+  const bool aligned = rel == 0.0 && r.nx == w && r.ny == h && r.grid_um == r.um_per_px;
+  const double scale = r.um_per_px / r.grid_um;  // image pixels → grid points
+  const double P = r.chroma_period;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        // The image offset (pixels, y up) turned back by the stage's turn from the frame: R(−Δ).
+        const double fx = (x - 0.5 * (w - 1)) * scale, fy = (0.5 * (h - 1) - y) * scale;
+        const double gx = (aligned ? fx : c * fx + s * fy) + 0.5 * (r.nx - 1);
+        const double gy = 0.5 * (r.ny - 1) - (aligned ? fy : -s * fx + c * fy);
+        glm::dvec3 xyz(0.0);
+        const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
+        if (mono) {
+          const double v = aligned ? f.grid[pix] : bilinear(f.grid, r.nx, r.ny, 1, 0, gx, gy);
+          xyz = std::max(0.0, v) * r.white;
+        } else {
+          const double nxp = (gx - r.chroma_origin) / P, nyp = (gy - r.chroma_origin) / P;
+          for (int k = 0; k < 3; ++k) {
+            const double g = aligned ? f.grid[pix * 3 + std::size_t(k)] : bilinear(f.grid, r.nx, r.ny, 3, k, gx, gy);
+            const double d = f.nodes.empty() ? 0.0 : bilinear(f.nodes, r.cnx, r.cny, 3, k, nxp, nyp);
+            xyz[k] = std::max(0.0, g + d);
+          }
+        }
+        const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / r.white.y) : xyz_to_linear_srgb(xyz);
+        for (int k = 0; k < 3; ++k) {
+          img.xyz[pix * 3 + std::size_t(k)] = float(xyz[k]);
+          img.rgb[pix * 3 + std::size_t(k)] = float(rgb[k]);
+        }
+      }
+  });
+  return img;
+}
+
+double response_difference_de2000(const SpecimenResponse& a, const SpecimenResponse& b,
+                                  const InstrumentSettings& instrument) {
+  const RenderImage ia = compose_response(a, instrument), ib = compose_response(b, instrument);
+  const std::size_t n = std::size_t(ia.width) * std::size_t(ia.height);
+  return split_half_de2000(
+      n,
+      [&](std::size_t i, int half) {
+        const std::vector<float>& v = half == 0 ? ia.xyz : ib.xyz;
+        return glm::dvec3(v[i * 3], v[i * 3 + 1], v[i * 3 + 2]);
+      },
+      a.white);
+}
+
+}  // namespace pmsim
