@@ -1,5 +1,7 @@
 #include "ui/app.h"
 
+#include "core/specimen/traced_specimen.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -199,7 +201,7 @@ bool App::export_field(const std::string& path) {
     RenderImage native_image;
     if (reframed) {
       validate_scene(native);  // the map's size against the render limits, as any render.width
-      native_image = ProgressiveRenderer::render(native);
+      native_image = render_microscope_scene(native);  // the source the screen's view uses
     }
     const RenderImage& img = reframed ? native_image : image_;
     const Scene& shown = reframed ? native : scene_;
@@ -426,7 +428,10 @@ void App::draw_status() {
   char err[32] = "err -";  // no estimate yet (a preview, the first pass)
   if (im.error_estimate) std::snprintf(err, sizeof err, "err %.2f dE00", *im.error_estimate);
   ImGui::Text("%s  %.1f spp  %d wl  pass %d  %s  %s  %.0f ms", current ? "" : "(previous)",
-              im.samples_per_pixel, im.wavelengths, im.passes, err, im.converged ? "converged" : "refining",
+              im.samples_per_pixel, im.wavelengths, im.passes, err, im.converged                ? "converged"
+              : im.stopped == "cap"       ? "stopped at cap"
+              : im.stopped == "cancelled" ? "cancelled"
+                                          : "refining",
               im.time_ms);
   ImGui::Text("UI %.1f fps (%.1f ms build)  stage %.1f deg  X %.3f mm  Y %.3f mm  field %.2f mm  %s",
               counters_.fps, counters_.frame_ms, scene_.stage_deg, scene_.stage.x_mm, scene_.stage.y_mm,

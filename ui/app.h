@@ -75,8 +75,9 @@ class App {
 
   const Scene& scene() const { return scene_; }
   const RenderImage& image() const { return image_; }
-  // The image on screen is the converged image of the current scene.
-  bool converged() const { return image_.converged && image_current_; }
+  // The image on screen is the final image of the current scene: converged (estimate below the
+  // tolerance) or stopped at its cap (image().stopped says which).
+  bool converged() const { return (image_.converged || image_.stopped == "cap") && image_current_; }
   bool image_current() const { return image_current_; }  // on screen: an image of scene()
   bool wait_rendered(double timeout_s) const;            // blocks (drivers/tests only, never in frame())
   const std::string& error() const { return error_; }

@@ -23,6 +23,16 @@ RenderFeed::~RenderFeed() {
 void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
   {
     std::lock_guard<std::mutex> lock(mu_);
+    // Only the instrument changed on a traced specimen: the response serves it as it is.
+    if (grains_mode_ && !busy_ && !pending_ && applied_id_ == submitted_id_ &&
+        same_specimen_response(traced_scene_, scene)) {
+      instrument_ = instrument_settings(scene);
+      ++instrument_version_;
+      grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
+      submitted_id_ = applied_id_ = id;
+      cv_.notify_all();
+      return;
+    }
     pending_.emplace(scene, id);
     submitted_id_ = id;
   }
@@ -37,7 +47,6 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
 void RenderFeed::run() {
   std::unique_lock<std::mutex> lock(mu_);
   std::uint64_t restarts = 0;  // the renderer's generation counts successful restarts
-  std::uint64_t grain_mounts = 0;
   for (;;) {
     cv_.wait(lock, [&] { return quit_ || pending_.has_value(); });
     if (quit_) return;
@@ -74,8 +83,13 @@ void RenderFeed::run() {
       applied_id_ = id;
       grains_mode_ = grains;
       if (grains) {
-        grain_generation_ = kGrainGeneration | ++grain_mounts;
+        grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
         grain_running_ = true;
+        traced_scene_ = scene;
+        instrument_ = instrument_settings(scene);
+        ++instrument_version_;
+        response_latest_ = ResponseProgress{};
+        ++response_version_;
       } else {
         renderer_generation_ = ++restarts;
       }
@@ -84,6 +98,7 @@ void RenderFeed::run() {
     if (!failed && grains) {
       const std::uint64_t generation = grain_generation_;
       lock.unlock();
+      (void)generation;
       render_grains(scene, generation);
       lock.lock();
       grain_running_ = false;
@@ -92,14 +107,14 @@ void RenderFeed::run() {
   }
 }
 
-void RenderFeed::render_grains(const Scene& scene, std::uint64_t generation) {
+void RenderFeed::render_grains(const Scene& scene, std::uint64_t) {
   try {
-    render_traced_specimen(
-        scene,
-        [&](const RenderImage& img) {
+    render_traced_response(
+        scene, ResponseCoverage::Disc,
+        [&](const ResponseProgress& p) {
           std::lock_guard<std::mutex> lock(mu_);
-          grain_latest_ = img;
-          grain_latest_.generation = generation;
+          response_latest_ = p;
+          ++response_version_;
           cv_.notify_all();
         },
         &grain_cancel_);
@@ -122,10 +137,19 @@ bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
   {
     std::lock_guard<std::mutex> lock(mu_);
     if (grains_mode_) {
-      const bool changed = grain_latest_.passes > 0 && (out.generation != grain_latest_.generation ||
-                                                        out.passes != grain_latest_.passes ||
-                                                        out.width != grain_latest_.width);
-      if (changed) out = grain_latest_;
+      // Compose the newest response at the newest settings when either changed (a few ms: see
+      // core/specimen/specimen_response.h).
+      if (response_latest_.response &&
+          (composed_response_ != response_version_ || composed_instrument_ != instrument_version_)) {
+        composed_ = compose_progress(response_latest_, instrument_);
+        composed_.generation = grain_generation_;
+        composed_response_ = response_version_;
+        composed_instrument_ = instrument_version_;
+      }
+      const bool changed = composed_.width > 0 && (out.generation != composed_.generation ||
+                                                   out.passes != composed_.passes || out.width != composed_.width ||
+                                                   out.stopped != composed_.stopped);
+      if (changed) out = composed_;
       current = !busy_ && !pending_ && applied_id_ == submitted_id_ && out.generation == grain_generation_;
       return changed;
     }
@@ -145,7 +169,8 @@ bool RenderFeed::wait(double timeout_s) const {
     if (!cv_.wait_until(lock, deadline, [&] { return quit_ || (!busy_ && !pending_); })) return false;
     if (grains_mode_) {
       if (!cv_.wait_until(lock, deadline, [&] { return quit_ || pending_ || !grain_running_; })) return false;
-      return !pending_ && grain_latest_.converged && grain_latest_.generation == grain_generation_;
+      // Rendered: stopped at the tolerance or at its cap (the image says which).
+      return !pending_ && (response_latest_.stopped == "tolerance" || response_latest_.stopped == "cap");
     }
   }
   const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();

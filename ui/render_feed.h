@@ -8,7 +8,12 @@
 // are refracting 3-D specimens that the core renders with render_traced_specimen (core/specimen,
 // is_traced_specimen decides), not the ProgressiveRenderer: the feeder thread runs it itself,
 // pass by pass, and a newer submission cancels it through its cancel flag. A section's slab is
-// cached in core, so a polarizer, focus or aperture change does not rebuild it.
+// cached in core, so a focus or aperture change does not rebuild it.
+// Traced specimens are rendered as a response (core/specimen/specimen_response.h) covering the
+// disc the field sweeps: a submission that changes only the instrument (stage angle, polars,
+// accessory, exposure: same_specimen_response) neither cancels nor restarts anything; snapshot()
+// composes the newest response at the newest settings, a few ms, so every frame of a stage drag
+// shows that angle's colours at the response's convergence.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -19,6 +24,7 @@
 #include <thread>
 
 #include "core/render/progressive_renderer.h"
+#include "core/specimen/forward_response.h"
 
 namespace pmsim::ui {
 
@@ -65,7 +71,13 @@ class RenderFeed {
   bool grains_mode_ = false;       // the applied scene is a grain mount
   bool grain_running_ = false;     // its render is in flight
   std::uint64_t grain_generation_ = 0;  // kGrainGeneration | n of the applied grain mount
-  RenderImage grain_latest_;
+  ResponseProgress response_latest_;       // the traced response so far
+  std::uint64_t response_version_ = 0;     // bumps with every new response state
+  Scene traced_scene_;                     // the scene the response is rendered for
+  InstrumentSettings instrument_;          // the newest submission's settings
+  std::uint64_t instrument_version_ = 0;   // bumps with every instrument-only submission
+  mutable RenderImage composed_;           // the response composed at instrument_
+  mutable std::uint64_t composed_response_ = ~0ull, composed_instrument_ = ~0ull;
   std::atomic<bool> grain_cancel_{false};
   std::thread thread_;
 };
