@@ -1,12 +1,19 @@
 // pmsim-render [SCENE.json] [--set key=value]... --out FILE.png|.exr|.tif [--stats FILE.json]
-//              [--labels FILE.png] [--grains FILE.json] [--scale-bar]
+//              [--labels FILE.png] [--grains FILE.json] [--scale-bar] [--progress]
+//              [--sweep KEY=START:STOP:STEP]
 // Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
 // scene ("type": "scene3d", core/scene3d), and writes the image atomically. A thin section's
 // ground truth goes with it: --labels the grain under every pixel centre (16-bit grey PNG,
 // core/microscope/grain_labels.h), --grains the grains in the image (core/io/grain_report_file.h).
+// --sweep renders one frame per value of an instrument key (stage_deg, polarizer_deg,
+// analyzer_deg, compensator_position) into the numbered files of --out (one printf integer
+// field); a traced specimen's response is traced once and composed at every value
+// (core/specimen/specimen_response.h). --progress (or a terminal on stderr): a progress line.
 // Bad input: a message naming file, key and value on stderr, exit code 2, no output file.
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -40,6 +47,8 @@
 #include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
+#include "core/specimen/forward_response.h"
+#include "core/specimen/specimen_response.h"
 #include "core/specimen/traced_specimen.h"
 
 namespace {
@@ -47,9 +56,9 @@ namespace {
 constexpr const char* kProgram = "pmsim-render";
 
 struct Args {
-  std::string scene_path, out, stats, labels, grains;
+  std::string scene_path, out, stats, labels, grains, sweep;
   std::vector<std::string> sets;
-  bool scale_bar = false;
+  bool scale_bar = false, progress = false;
 };
 
 [[noreturn]] void usage_error(const std::string& msg) { pmsim::cli::usage_error(kProgram, msg); }
@@ -77,6 +86,15 @@ Args parse_args(int argc, char** argv) {
   app.add_flag("--scale-bar", a.scale_bar,
                "orthoscopic microscope views: burn a scale bar (section millimetres) into the image, "
                "bottom left, as the app's exports do");
+  app.add_option("--sweep", a.sweep,
+                 "render one frame per value START, START+STEP, ... <= STOP of an instrument key (stage_deg, "
+                 "polarizer_deg, analyzer_deg, compensator_position) into --out's numbered files (one "
+                 "field %d, %Nd or %0Nd, e.g. frames/stage_%03d.png; frames from 0); each frame is the "
+                 "image of --set KEY=value")
+      ->type_name("KEY=START:STOP:STEP");
+  app.add_flag("--progress", a.progress,
+               "print a progress line on stderr (passes, error estimate, elapsed and estimated time "
+               "left); always on when stderr is a terminal");
   pmsim::cli::parse_or_exit(app, argc, argv);
   return a;
 }
@@ -123,16 +141,396 @@ void apply_scene3d_setting(nlohmann::json& j, const std::string& assignment) {
   }
 }
 
-void progress_bar(const pmsim::RenderImage& img) {
-  std::fprintf(stderr, "\r%-10s pass %2d  %5d bands  ΔE≈%7.3f  %8.1f ms",
-               img.converged ? "done" : "rendering", img.passes, img.wavelengths,
-               img.error_estimate.value_or(std::nan("")), img.time_ms);
-  std::fflush(stderr);
+// The progress line (--progress, or whenever stderr is a terminal): passes, the error estimate
+// against render.tolerance, the elapsed time and an estimate of the time left. On a terminal the
+// line is redrawn in place; otherwise (--progress into a file or pipe) every update is a line.
+//
+// Time left, the sooner of two guesses, "?" when neither is known:
+//   - the estimate's trend: a least-squares line through log(estimate) against log(elapsed) over
+//     the last few updates (Monte Carlo noise falls as t^−½, a spectral level's error faster), run
+//     on to render.tolerance; unknown until two estimates fall;
+//   - the passes toward the cap: `measure` (traces a pixel, or bands) grows toward `cap` at the
+//     rate so far — elapsed × (cap − measure) / measure (for the flat renderer's doubling bands the
+//     levels done cost ~2·measure and the levels left ~2·(cap − measure), the same ratio).
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, bool tty) : enabled_(enabled), tty_(tty) {}
+  bool enabled() const { return enabled_; }
+
+  // A new render: its label (the sweep's frame, "" for a single image), tolerance and cap (0: none).
+  void begin(std::string label, double tolerance, double cap) {
+    label_ = std::move(label);
+    tolerance_ = tolerance;
+    cap_ = cap;
+    history_.clear();
+  }
+
+  void update(int passes, double measure, std::optional<double> estimate, double elapsed_ms,
+              const std::string& stopped, bool preview = false) {
+    if (!enabled_) return;
+    const double t = elapsed_ms * 1e-3;
+    if (!preview) history_.push_back({t, measure, estimate});
+    char est[64], line[512];
+    if (estimate)
+      std::snprintf(est, sizeof est, "ΔE≈%.3f (tolerance %.3g)", *estimate, tolerance_);
+    else
+      std::snprintf(est, sizeof est, "ΔE≈? (tolerance %.3g)", tolerance_);
+    std::string left;
+    if (!stopped.empty()) {
+      left = "stopped: " + stopped;
+    } else if (const std::optional<double> s = time_left_s()) {
+      char b[48];
+      std::snprintf(b, sizeof b, "~%.1f s left", *s);
+      left = b;
+    } else {
+      left = "? left";
+    }
+    std::snprintf(line, sizeof line, "%s%s%s  pass %d  %s  %.1f s  %s", label_.c_str(), label_.empty() ? "" : ": ",
+                  preview ? "preview" : stopped.empty() ? "rendering" : "done", passes, est, t, left.c_str());
+    emit(line);
+  }
+
+  // A line of its own (a sweep's composed frame).
+  void note(const std::string& text) {
+    if (enabled_) emit(text);
+  }
+
+  // Ends the line in place on a terminal.
+  void end() {
+    if (enabled_ && tty_ && drawn_) std::fputc('\n', stderr);
+    drawn_ = false;
+    std::fflush(stderr);
+  }
+
+ private:
+  struct Point {
+    double t_s, measure;
+    std::optional<double> estimate;
+  };
+
+  void emit(const char* line) { emit(std::string(line)); }
+  void emit(const std::string& line) {
+    if (tty_)
+      std::fprintf(stderr, "\r%s\033[K", line.c_str());
+    else
+      std::fprintf(stderr, "%s\n", line.c_str());
+    drawn_ = true;
+    std::fflush(stderr);
+  }
+
+  std::optional<double> time_left_s() const {
+    std::optional<double> best;
+    auto take = [&](double s) {
+      if (std::isfinite(s) && s >= 0 && (!best || s < *best)) best = s;
+    };
+    if (history_.empty()) return best;
+    const Point& now = history_.back();
+    // The estimate's trend toward the tolerance.
+    std::vector<std::pair<double, double>> xy;  // (log t, log estimate), the last four
+    for (auto it = history_.rbegin(); it != history_.rend() && xy.size() < 4; ++it)
+      if (it->estimate && *it->estimate > 0 && it->t_s > 0) xy.emplace_back(std::log(it->t_s), std::log(*it->estimate));
+    if (now.estimate && *now.estimate <= tolerance_) {
+      take(0.0);
+    } else if (xy.size() >= 2 && now.estimate) {
+      double mx = 0, my = 0;
+      for (const auto& [x, y] : xy) mx += x, my += y;
+      mx /= xy.size();
+      my /= xy.size();
+      double sxx = 0, sxy = 0;
+      for (const auto& [x, y] : xy) sxx += (x - mx) * (x - mx), sxy += (x - mx) * (y - my);
+      const double slope = sxx > 0 ? sxy / sxx : 0.0;
+      if (slope < -1e-3) {
+        // log e = my + slope·(log t − mx) reaches log(tolerance) at:
+        const double t_tol = std::exp(mx + (std::log(tolerance_) - my) / slope);
+        take(t_tol - now.t_s);
+      }
+    }
+    // The passes toward the cap.
+    if (cap_ > 0 && now.measure > 0 && now.t_s > 0) take(now.t_s * std::max(0.0, cap_ - now.measure) / now.measure);
+    return best;
+  }
+
+  bool enabled_, tty_;
+  bool drawn_ = false;
+  std::string label_;
+  double tolerance_ = 0.5, cap_ = 0.0;
+  std::vector<Point> history_;
+};
+
+// What a render's progress counts toward its cap: a traced specimen's traces a pixel toward
+// render.spp (0: the specimen's own default cap, not known here), the flat renderer's bands
+// toward render.wavelengths or its last level.
+double progress_cap(const pmsim::Scene& scene) {
+  if (pmsim::is_traced_specimen(scene)) return scene.render.spp;
+  if (scene.render.single_wavelength_nm > 0) return 0.0;
+  return scene.render.wavelengths > 0 ? scene.render.wavelengths : pmsim::kProgressiveMaxBands;
+}
+double progress_measure(const pmsim::Scene& scene, const pmsim::RenderImage& img) {
+  return pmsim::is_traced_specimen(scene) ? img.samples_per_pixel : img.wavelengths;
+}
+
+// The render's callback for the progress line; none when the line is off (a traced specimen
+// composes an image for every pass it reports).
+std::function<void(const pmsim::RenderImage&)> progress_callback(ProgressLine& progress, const pmsim::Scene& scene) {
+  if (!progress.enabled()) return nullptr;
+  return [&progress, &scene](const pmsim::RenderImage& im) {
+    progress.update(im.passes, progress_measure(scene, im), im.error_estimate, im.time_ms, im.stopped);
+  };
 }
 
 bool ends_with_ci(std::string s, const std::string& suf) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s.size() >= suf.size() && s.compare(s.size() - suf.size(), suf.size(), suf) == 0;
+}
+
+// --sweep KEY=START:STOP:STEP: the instrument keys a traced response can be composed at, and the
+// values START, START + STEP, … up to STOP (within 1e-9·STEP, so that 0:1:0.1 ends at 1).
+constexpr const char* kSweepKeys[] = {"stage_deg", "polarizer_deg", "analyzer_deg", "compensator_position"};
+constexpr int kMaxSweepFrames = 3600;
+
+struct Sweep {
+  std::string key;
+  double start = 0, stop = 0, step = 0;
+  std::vector<std::string> values;  // each as --set would take it (%.15g: 0.30000000000000004 is 0.3)
+};
+
+Sweep parse_sweep(const std::string& arg) {
+  const auto bad = [&](const std::string& why) { usage_error("--sweep " + arg + ": " + why); };
+  const auto eq = arg.find('=');
+  if (eq == std::string::npos) bad("expected KEY=START:STOP:STEP");
+  Sweep sw;
+  sw.key = arg.substr(0, eq);
+  bool known = false;
+  std::string keys;
+  for (const char* k : kSweepKeys) {
+    known = known || sw.key == k;
+    keys += std::string(keys.empty() ? "" : ", ") + k;
+  }
+  if (!known) bad("key '" + sw.key + "' cannot be swept (one of " + keys + ")");
+  std::vector<std::string> parts;
+  const std::string range = arg.substr(eq + 1);
+  for (std::size_t p = 0;;) {
+    const std::size_t c = range.find(':', p);
+    parts.push_back(range.substr(p, c == std::string::npos ? std::string::npos : c - p));
+    if (c == std::string::npos) break;
+    p = c + 1;
+  }
+  if (parts.size() != 3) bad("expected KEY=START:STOP:STEP (three numbers), got '" + range + "'");
+  double v[3];
+  const char* names[] = {"START", "STOP", "STEP"};
+  for (int i = 0; i < 3; ++i) {
+    const std::string& t = parts[i];
+    const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v[i]);
+    if (t.empty() || ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v[i]))
+      bad(std::string(names[i]) + " '" + t + "' is not a number");
+  }
+  sw.start = v[0];
+  sw.stop = v[1];
+  sw.step = v[2];
+  if (!(sw.step > 0)) bad("STEP " + parts[2] + " must be > 0");
+  if (sw.start > sw.stop) bad("START " + parts[0] + " is above STOP " + parts[1]);
+  const double q = (sw.stop - sw.start) / sw.step + 1e-9;  // value i ≤ STOP + 1e-9·STEP ⇔ i ≤ q
+  if (!(q < kMaxSweepFrames))
+    bad((q < 1e15 ? std::to_string(static_cast<long long>(std::floor(q)) + 1) + " frames" : std::string("too many frames")) +
+        " (" + parts[0] + " to " + parts[1] + " by " + parts[2] + "): more than " + std::to_string(kMaxSweepFrames) +
+        " frames");
+  const int n = static_cast<int>(std::floor(q)) + 1;
+  for (int i = 0; i < n; ++i) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.15g", sw.start + i * sw.step);
+    sw.values.push_back(b);
+  }
+  return sw;
+}
+
+// --out with a sweep: exactly one printf integer field, %d, %Nd or %0Nd ("%%" is a literal %).
+struct OutPattern {
+  std::string prefix, suffix;
+  int width = 0;
+  bool zero = false;
+  std::string file(int i) const {
+    std::string n = std::to_string(i);
+    if (static_cast<int>(n.size()) < width) n.insert(0, width - n.size(), zero ? '0' : ' ');
+    return prefix + n + suffix;
+  }
+};
+
+OutPattern parse_out_pattern(const std::string& out) {
+  const auto bad = [&](const std::string& why) {
+    usage_error("--out " + out + " with --sweep: " + why +
+                " (one integer field: %d, %Nd or %0Nd, e.g. frames/stage_%03d.png)");
+  };
+  OutPattern p;
+  int fields = 0;
+  std::string* side = &p.prefix;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i] != '%') {
+      *side += out[i];
+      continue;
+    }
+    if (i + 1 < out.size() && out[i + 1] == '%') {
+      *side += '%';
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    const bool zero = j < out.size() && out[j] == '0';
+    if (zero) ++j;
+    std::size_t d = j;
+    while (d < out.size() && std::isdigit(static_cast<unsigned char>(out[d]))) ++d;
+    if (d >= out.size() || out[d] != 'd') bad("'" + out.substr(i, d + 1 - i) + "' is not an integer field");
+    if (d - j > 2) bad("field width '" + out.substr(j, d - j) + "' is too wide");
+    if (++fields > 1) bad("more than one field");
+    p.zero = zero;
+    p.width = d > j ? std::stoi(out.substr(j, d - j)) : 0;
+    side = &p.suffix;
+    i = d;
+  }
+  if (fields == 0) bad("no frame-number field");
+  return p;
+}
+
+// Writable folders for every file about to be written, before anything is rendered: a failure
+// leaves no image without its labels (and none of the files half-written).
+void check_writable(const std::vector<std::string>& paths) {
+  std::vector<std::filesystem::path> seen;
+  for (const std::string& p : paths) {
+    if (p.empty()) continue;
+    const std::filesystem::path dir = std::filesystem::absolute(p).parent_path();
+    if (std::find(seen.begin(), seen.end(), dir) != seen.end()) continue;
+    seen.push_back(dir);
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+      throw std::runtime_error("cannot write " + p + ": folder " + dir.string() + " is not writable");
+  }
+}
+
+nlohmann::json image_stats(const pmsim::RenderImage& img) {
+  return {{"time_ms", img.time_ms},
+          {"samples_per_pixel", img.samples_per_pixel},
+          {"wavelengths", img.wavelengths},
+          {"error_estimate", img.error_estimate ? nlohmann::json(*img.error_estimate) : nlohmann::json()},
+          {"converged", img.converged},
+          {"stopped", img.stopped},
+          {"passes", img.passes},
+          {"model_report", img.model_report}};
+}
+
+// One image's pixels as written: exposure for 8-bit PNG, then the scale bar.
+std::vector<float> output_pixels(const pmsim::Scene& scene, std::vector<float> rgb, int width, int height,
+                                 const std::string& out, bool scale_bar) {
+  // render.exposure_ev scales the 8-bit PNG only (before the scale bar, which stays white);
+  // EXR and TIFF are linear floats and carry the key in their scene metadata.
+  if (ends_with_ci(out, ".png")) rgb = pmsim::exposed(rgb, scene.render.exposure_ev);
+  if (scale_bar)
+    pmsim::burn_scale_bar(rgb, width, height,
+                          pmsim::choose_scale_bar(pmsim::mm_per_pixel(scene, width, height), width));
+  return rgb;
+}
+
+// --sweep: every frame's scene (the key set through apply_settings, as --set does: the same
+// validation), checked before anything renders; then the frames, each written as it is made.
+int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, const pmsim::Scene& scene,
+              ProgressLine& progress) {
+  std::vector<pmsim::Scene> frames;
+  for (const std::string& v : sw.values) {
+    pmsim::Scene f = scene;
+    try {
+      pmsim::apply_settings(f, {sw.key + "=" + v});
+    } catch (const pmsim::InputError& e) {
+      std::cerr << kProgram << ": --sweep " << args.sweep << ": " << e.what() << "\n";
+      return 2;
+    }
+    frames.push_back(std::move(f));
+  }
+  const int n = static_cast<int>(frames.size());
+  std::vector<std::string> files;
+  for (int i = 0; i < n; ++i) files.push_back(pattern.file(i));
+  std::vector<std::string> outputs = files;
+  outputs.push_back(args.stats);
+  check_writable(outputs);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  // A traced specimen whose response serves every frame: traced once (Disc when the stage turns:
+  // the field sweeps a disc of the specimen), composed at each value.
+  bool one_response = pmsim::is_traced_specimen(frames[0]);
+  for (const pmsim::Scene& f : frames)
+    one_response = one_response && pmsim::is_traced_specimen(f) && pmsim::same_specimen_response(frames[0], f);
+  const bool disc = sw.key == "stage_deg";
+  nlohmann::json frame_stats = nlohmann::json::array(), response_stats;
+  std::optional<pmsim::ResponseProgress> response;
+  if (one_response) {
+    progress.begin(std::string("response (") + (disc ? "disc" : "field") + ")",
+                   frames[0].render.tolerance_de2000, frames[0].render.spp);
+    response = pmsim::render_traced_response(
+        frames[0], disc ? pmsim::ResponseCoverage::Disc : pmsim::ResponseCoverage::Field,
+        progress.enabled() ? [&](const pmsim::ResponseProgress& p) {
+          if (!p.response) return;
+          progress.update(p.response->passes, p.response->samples_per_pixel, p.error_estimate, p.response->time_ms,
+                          p.stopped, p.preview);
+        } : std::function<void(const pmsim::ResponseProgress&)>());
+    progress.end();
+    if (!response->response || response->stopped == "cancelled")
+      throw std::runtime_error("the specimen's response was not rendered");
+    const pmsim::SpecimenResponse& r = *response->response;
+    response_stats = {{"coverage", disc ? "disc" : "field"},
+                      {"time_ms", r.time_ms},
+                      {"samples_per_pixel", r.samples_per_pixel},
+                      {"passes", r.passes},
+                      {"error_estimate", response->error_estimate ? nlohmann::json(*response->error_estimate)
+                                                                  : nlohmann::json()},
+                      {"converged", response->converged},
+                      {"stopped", response->stopped},
+                      {"model_report", r.model_report}};
+  }
+  bool all_converged = true, all_tolerance = true, any_unknown = false;
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const pmsim::Scene& f = frames[i];
+    const std::string label = "frame " + std::to_string(i + 1) + "/" + std::to_string(n) + " " + sw.key + "=" +
+                              sw.values[i];
+    pmsim::RenderImage img;
+    if (response) {
+      img = pmsim::compose_progress(*response, pmsim::instrument_settings(f));
+      progress.note(label + ": composed");
+    } else {
+      progress.begin(label, f.render.tolerance_de2000, progress_cap(f));
+      img = pmsim::render_microscope_scene(f, progress_callback(progress, f));
+      progress.end();
+    }
+    const std::vector<float> rgb = output_pixels(f, std::move(img.rgb), img.width, img.height, files[i], args.scale_bar);
+    pmsim::write_image(files[i], img.width, img.height, rgb, pmsim::scene_to_json(f));
+    nlohmann::json st = image_stats(img);
+    st["index"] = i;
+    st["value"] = std::stod(sw.values[i]);
+    st["file"] = files[i];
+    frame_stats.push_back(std::move(st));
+    all_converged = all_converged && img.converged;
+    all_tolerance = all_tolerance && img.stopped == "tolerance";
+    if (img.error_estimate)
+      worst = std::max(worst, *img.error_estimate);
+    else
+      any_unknown = true;
+  }
+  progress.end();
+  if (!args.stats.empty()) {
+    nlohmann::json stats;
+    stats["sweep"] = {{"key", sw.key}, {"start", sw.start}, {"stop", sw.stop}, {"step", sw.step}, {"frames", n}};
+    stats["time_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (response) {
+      // Every frame carries the response's estimate and stop.
+      stats["error_estimate"] = response_stats["error_estimate"];
+      stats["converged"] = response_stats["converged"];
+      stats["stopped"] = response_stats["stopped"];
+    } else {
+      stats["error_estimate"] = any_unknown ? nlohmann::json() : nlohmann::json(worst);  // the worst frame's
+      stats["converged"] = all_converged;
+      stats["stopped"] = all_tolerance ? "tolerance" : "cap";
+    }
+    stats["response"] = response_stats;  // null: each frame rendered on its own
+    stats["frames"] = std::move(frame_stats);
+    pmsim::write_text_atomically(args.stats, stats.dump(2) + "\n");
+  }
+  return 0;
 }
 
 }  // namespace
@@ -146,6 +544,14 @@ int main(int argc, char** argv) {
     usage_error("--labels must end in .png: '" + args.labels + "'");
   const bool ground_truth = !args.labels.empty() || !args.grains.empty();
   const char* ground_truth_flag = !args.labels.empty() ? "--labels" : "--grains";
+  std::optional<Sweep> sweep;
+  std::optional<OutPattern> pattern;
+  if (!args.sweep.empty()) {
+    sweep = parse_sweep(args.sweep);
+    pattern = parse_out_pattern(args.out);
+    if (ground_truth) usage_error(std::string(ground_truth_flag) + " cannot be used with --sweep");
+  }
+  ProgressLine progress(args.progress || ::isatty(STDERR_FILENO), ::isatty(STDERR_FILENO));
   int width = 0, height = 0;
   std::vector<float> rgb;
   std::vector<std::uint16_t> labels;
@@ -164,19 +570,23 @@ int main(int argc, char** argv) {
         throw pmsim::InputError(path, "type", "scene3d",
                                 std::string(ground_truth_flag) +
                                     " needs a microscope scene with sample.type=section");
+      if (sweep) throw pmsim::InputError(path, "type", "scene3d", "--sweep needs a microscope scene");
       for (const std::string& s : args.sets) apply_scene3d_setting(j, s);
       const pmsim::Scene3dDescription desc = pmsim::parse_scene3d(j, path);
+      check_writable({args.out, args.stats});
       pmsim::Scene3dImage img = pmsim::render_scene3d(desc);
       img.settings["scene"] = j;
       width = img.width;
       height = img.height;
       rgb = std::move(img.rgb_linear);
       meta = std::move(img.settings);
+      // The 3-D renderer runs its fixed samples a pixel once: stopped by that count.
       stats = {{"time_ms", img.time_ms},
                {"samples_per_pixel", desc.camera.samples_per_pixel * desc.camera.samples_per_pixel},
                {"wavelengths", meta.contains("channels") ? meta["channels"] : nlohmann::json(3)},
                {"error_estimate", 0.0},
                {"converged", true},
+               {"stopped", "cap"},
                {"passes", 1},
                {"model_report", "scene3d: Whitted ray tracer with SML lenses"}};
     } else {
@@ -207,57 +617,40 @@ int main(int argc, char** argv) {
           pmsim::is_orientation_map_path(scene.sample.section))
         if (const pmsim::MapSectionFacts* f = pmsim::map_section_facts(*pmsim::load_scene_section(scene)))
           for (const std::string& w : f->warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
-      const bool tty = ::isatty(STDERR_FILENO);
-      const auto bar = tty ? std::function<void(const pmsim::RenderImage&)>(progress_bar) : nullptr;
-      // A grain mount, and a thin section with optics.relief on (orthoscopic), are refracting
-      // 3-D specimens (core/specimen), traced with their polarization.
-      pmsim::RenderImage img = pmsim::is_traced_specimen(scene) ? pmsim::render_traced_specimen(scene, bar)
-                                                                : pmsim::ProgressiveRenderer::render(scene, 0, bar);
-      if (tty) std::fprintf(stderr, "\n");
+      if (sweep) return run_sweep(args, *sweep, *pattern, scene, progress);
+      check_writable({args.labels, args.grains, args.out, args.stats});
+      progress.begin("", scene.render.tolerance_de2000, progress_cap(scene));
+      // One image from whichever source the scene needs (a traced specimen's response composed
+      // at its settings, or the progressive renderer's flat image): core/specimen/traced_specimen.h.
+      pmsim::RenderImage img = pmsim::render_microscope_scene(scene, progress_callback(progress, scene));
+      progress.end();
       width = img.width;
       height = img.height;
-      rgb = std::move(img.rgb);
-      // render.exposure_ev scales the 8-bit PNG only (before the scale bar, which stays white);
-      // EXR and TIFF are linear floats and carry the key in their scene metadata.
-      if (ends_with_ci(args.out, ".png")) rgb = pmsim::exposed(rgb, scene.render.exposure_ev);
+      rgb = output_pixels(scene, std::move(img.rgb), width, height, args.out, args.scale_bar);
       meta = pmsim::scene_to_json(scene);
-      if (args.scale_bar)
-        pmsim::burn_scale_bar(rgb, width, height,
-                              pmsim::choose_scale_bar(pmsim::mm_per_pixel(scene, width, height), width));
       if (ground_truth) {
         section = pmsim::load_scene_section(scene);
         labels = pmsim::grain_label_image(scene, *section);
         microscope_scene = scene;
       }
-      stats = {
-          {"time_ms", img.time_ms},
-          {"samples_per_pixel", img.samples_per_pixel},
-          {"wavelengths", img.wavelengths},
-          {"error_estimate", img.error_estimate ? nlohmann::json(*img.error_estimate) : nlohmann::json()},
-          {"converged", img.converged},
-          {"passes", img.passes},
-          {"model_report", img.model_report}};
+      stats = image_stats(img);
     }
   } catch (const pmsim::InputError& e) {
+    progress.end();
     std::cerr << kProgram << ": " << e.what() << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
+    progress.end();
     std::cerr << "pmsim-render: not enough memory to render this scene (try a smaller "
                  "render.width × render.height)\n";
     return 1;
   } catch (const std::exception& e) {  // no future throw may abort: a message and exit 1
+    progress.end();
     std::cerr << kProgram << ": " << e.what() << "\n";
     return 1;
   }
   try {
-    // The ground truth first, each file atomic, after checking that every output's folder takes
-    // files: a failure leaves no image without its labels (and none of the files half-written).
-    for (const std::string& p : {args.labels, args.grains, args.out}) {
-      if (p.empty()) continue;
-      const std::filesystem::path dir = std::filesystem::absolute(p).parent_path();
-      if (::access(dir.c_str(), W_OK | X_OK) != 0)
-        throw std::runtime_error("cannot write " + p + ": folder " + dir.string() + " is not writable");
-    }
+    // The ground truth first, each file atomic (every folder was checked before rendering).
     if (!args.labels.empty()) pmsim::write_gray16_png(args.labels, width, height, labels, meta);
     if (!args.grains.empty())
       pmsim::write_grain_report_file(args.grains, *microscope_scene, *section,

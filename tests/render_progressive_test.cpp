@@ -86,7 +86,51 @@ TEST(ProgressiveRenderer, FixedSampleCountsAreExact) {
   const RenderImage img = ProgressiveRenderer::render(s, 1);
   EXPECT_EQ(img.wavelengths, 24);
   EXPECT_EQ(img.passes, 1);
+  // render.wavelengths ended it, not the tolerance: "cap". Its estimate (24 bands against 12 on
+  // the partial level before) is still reported, and `converged` says only whether it is below
+  // the tolerance.
+  EXPECT_EQ(img.stopped, "cap");
+  ASSERT_TRUE(img.error_estimate.has_value());
+  EXPECT_EQ(img.converged, *img.error_estimate < s.render.tolerance_de2000);
+}
+
+TEST(ProgressiveRenderer, StopsAtTheToleranceOrSaysWhyNot) {
+  // Unbounded: stopped at the tolerance, converged, the estimate below it.
+  const RenderImage img = ProgressiveRenderer::render(figure(16), 1);
+  EXPECT_EQ(img.stopped, "tolerance");
   EXPECT_TRUE(img.converged);
+  ASSERT_TRUE(img.error_estimate.has_value());
+  EXPECT_LT(*img.error_estimate, 0.5);
+  // One band: no lower level to estimate from, so no estimate and not converged.
+  Scene one = figure(16);
+  one.render.wavelengths = 1;
+  const RenderImage capped = ProgressiveRenderer::render(one, 1);
+  EXPECT_EQ(capped.stopped, "cap");
+  EXPECT_FALSE(capped.error_estimate.has_value());
+  EXPECT_FALSE(capped.converged);
+  // A spectral line is exact at its one level: estimate 0, converged at the tolerance.
+  Scene mono = figure(16);
+  mono.render.single_wavelength_nm = 589.0;
+  const RenderImage line = ProgressiveRenderer::render(mono, 1);
+  EXPECT_EQ(line.stopped, "tolerance");
+  EXPECT_TRUE(line.converged);
+  EXPECT_EQ(line.error_estimate.value_or(-1.0), 0.0);
+}
+
+TEST(ProgressiveRenderer, ACancelledRenderSaysSo) {
+  ProgressiveRenderer r(1);
+  Scene big = figure(256);
+  big.render.wavelengths = 4000;  // still running when cancelled
+  r.restart(big);
+  RenderImage img;
+  // Wait for the previews (a 256² figure has two), so there is an image to mark.
+  for (int i = 0; i < 2000 && !r.snapshot(img); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  r.cancel();
+  EXPECT_FALSE(r.wait(0.0));
+  RenderImage last;
+  ASSERT_TRUE(r.snapshot(last));
+  EXPECT_EQ(last.stopped, "cancelled");
+  EXPECT_FALSE(last.converged);
 }
 
 // The previews of a large field: every image of a restart, in order, with the first one's mean

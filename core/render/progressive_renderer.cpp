@@ -27,13 +27,26 @@ namespace pmsim {
 
 namespace {
 
-constexpr int kFirstBands = 8;   // first pass: 50 nm bands (a coarse preview)
-constexpr int kMaxBands = 4096;  // ~0.1 nm: beyond this a level costs more than it can change
+constexpr int kFirstBands = 8;  // first pass: 50 nm bands (a coarse preview)
 
 // One render from a scene to convergence (or the requested sample counts), calling `publish`
 // after every pass. Progressive (the UI): every level is a full image, starting coarse. Final
 // (pmsim-render): the first level is only computed on a subset of the units, enough to estimate
 // the error of the next, full level. Returns false when cancelled.
+//
+// How it stops (RenderImage::stopped, converged):
+//   - "tolerance": the estimate (this level against the previous one) fell below
+//     render.tolerance; converged.
+//   - "cap": render.wavelengths fixes the one full level, or the levels reached
+//     kProgressiveMaxBands first. With render.wavelengths = N ≥ 2 a subset of the units (a
+//     partial level, as the final render's first) is evaluated at N/2 bands first, so the capped
+//     image still carries an estimate ("the estimate at the stop"); converged only if that
+//     estimate is below the tolerance too. N = 1 has no lower level: no estimate, not converged.
+//   - A monochromatic render (render.single_wavelength_nm) is one spectral line: the levels
+//     refine nothing else (the spatial sampling is the plan's, fixed), so its one level is the
+//     exact image the estimate measures against: estimate 0, "tolerance", converged — whatever
+//     render.wavelengths says.
+// render.spp sets the plan's spatial samples, not a number of passes: it never stops this renderer.
 template <class Publish>
 bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock::time_point t0,
                 BufferPool* pool, std::uint64_t generation, bool progressive, Publish&& publish) {
@@ -55,11 +68,14 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock
   std::vector<glm::dvec3> prev(n_units), units(n_units);
   std::size_t prev_stride = 0;  // 0: no previous level
   const bool mono = scene.render.single_wavelength_nm > 0;
-  const bool one_level = fixed > 0 || mono;
-  for (int bands = one_level ? std::max(1, fixed) : (progressive ? kFirstBands : 2 * kFirstBands);;
-       bands *= 2) {
+  const bool capped = !mono && fixed > 0;                // one full level of `fixed` bands
+  const bool estimate_first = capped && fixed >= 2;      // its estimate from a partial level at fixed/2
+  int bands = mono ? std::max(1, fixed)
+              : capped ? (estimate_first ? fixed / 2 : fixed)
+                       : (progressive ? kFirstBands : 2 * kFirstBands);
+  for (;;) {
     const SpectralLevel level = make_spectral_level(plan, bands);
-    const bool partial = !progressive && !one_level && prev_stride == 0;
+    const bool partial = prev_stride == 0 && (estimate_first || (!progressive && !capped && !mono));
     const std::size_t stride = partial ? std::max<std::size_t>(1, n_units / 8192) : 1;
     std::atomic<bool> stopped{false};
     const std::size_t m = (n_units + stride - 1) / stride;
@@ -80,14 +96,14 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock
                         }
                       });
     if (stopped || cancel) return false;
-    // The error of this level against the previous one: unknown for the first level, 0 for the only one.
+    // The error of this level against the previous one: unknown for the first level.
     std::optional<double> err;
     if (prev_stride > 0)
       err = unit_error(plan, area, units, prev, std::max(prev_stride, n_units / 65536 + 1), cancel);
     if (cancel) return false;
-    if (one_level) err = 0.0;
-    const bool converged = one_level || (err && *err < scene.render.tolerance_de2000);
-    const bool last = converged || bands >= kMaxBands;
+    if (mono) err = 0.0;  // exact (see above)
+    const bool below = err && *err < scene.render.tolerance_de2000;
+    const bool last = !partial && (mono || capped || below || bands >= kProgressiveMaxBands);
     if (!partial) {
       ++passes;
       RenderImage img = image_with_buffers(pool, plan.width(), plan.height());
@@ -101,13 +117,15 @@ bool run_render(const Scene& scene, const std::atomic<bool>& cancel, RenderClock
                               std::max<std::size_t>(1, plan.cone_dirs().size());
       img.model_report = plan.model_report() + "; spectrum: " + std::to_string(level.n) +
                          (level.monochromatic ? " line" : " bands");
-      img.converged = converged;
+      img.converged = below;
+      if (last) img.stopped = (mono || (!capped && below)) ? "tolerance" : "cap";
       img.time_ms = std::chrono::duration<double, std::milli>(RenderClock::now() - t0).count();
       publish(std::move(img), last);
     }
     if (last) return true;
     std::swap(prev, units);
     prev_stride = stride;
+    bands = capped ? fixed : 2 * bands;
   }
 }
 
@@ -172,7 +190,7 @@ void ProgressiveRenderer::restart(const Scene& scene) {
     const auto t0 = RenderClock::now();
     im->arena->execute([&] {
       try {
-        run_render(scene, *cancel, t0, &im->pool, gen, true, [&](RenderImage&& img, bool last) {
+        const bool finished = run_render(scene, *cancel, t0, &im->pool, gen, true, [&](RenderImage&& img, bool last) {
           std::lock_guard<std::mutex> lock(im->mu);
           std::swap(im->latest, img);
           im->pool.give(std::move(img.rgb));  // the replaced image's buffers
@@ -181,6 +199,12 @@ void ProgressiveRenderer::restart(const Scene& scene) {
           if (last) im->running = false;
           im->cv.notify_all();
         });
+        if (!finished) {
+          // Cancelled before the end: the last image of this work says so (a later restart's
+          // images have their own generation and are not touched).
+          std::lock_guard<std::mutex> lock(im->mu);
+          if (im->have_image && im->latest.generation == gen) im->latest.stopped = "cancelled";
+        }
       } catch (...) {
         // A scene that passed validation but failed to build (e.g. a section file removed since):
         // nothing to show; wait() returns.
@@ -216,7 +240,8 @@ bool ProgressiveRenderer::wait(double timeout_s) const {
     impl_->cv.wait(lock, pred);
   else
     impl_->cv.wait_for(lock, std::chrono::duration<double>(timeout_s), pred);
-  return !impl_->running && impl_->have_image && impl_->latest.converged &&
+  const std::string& stopped = impl_->latest.stopped;
+  return !impl_->running && impl_->have_image && (stopped == "tolerance" || stopped == "cap") &&
          impl_->latest.generation == impl_->generation;
 }
 

@@ -12,6 +12,15 @@
 
 namespace pmsim {
 
+// The finest spectral level (~0.1 nm bands: beyond this a level costs more than it can change):
+// a render without render.wavelengths that has not met its tolerance by then stops here, "cap".
+inline constexpr int kProgressiveMaxBands = 4096;
+
+// Final images carry why they stopped (RenderImage::stopped): "tolerance" (the estimate fell below
+// render.tolerance; converged), "cap" (render.wavelengths, or kProgressiveMaxBands first; converged
+// only if the estimate is below the tolerance too), "cancelled" (the instance's last image when
+// its work was cancelled or interrupted before the end). The rules, with a monochromatic render's
+// (its one level is exact): progressive_renderer.cpp, run_render.
 class ProgressiveRenderer {
  public:
   explicit ProgressiveRenderer(int threads = 0);  // 0: all cores
@@ -32,7 +41,9 @@ class ProgressiveRenderer {
   // and `passes` of `out` (so a UI uploads a texture only when something changed).
   bool snapshot(RenderImage& out) const;
 
-  // Blocks until converged (or spp/wavelengths reached), cancelled, or timeout; returns converged.
+  // Blocks until the render of the current scene has finished (stopped at the tolerance or a cap),
+  // been cancelled, or the timeout; returns whether it finished with its final image on hand
+  // (stopped "tolerance" or "cap": a capped render counts, though its `converged` may be false).
   bool wait(double timeout_s = 1e30) const;
 
   // Renders a scene to convergence on the calling thread's TBB arena; what pmsim-render uses.
