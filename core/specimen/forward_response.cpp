@@ -49,14 +49,16 @@ PassGrid make_grid(int nx, int ny, double um, int period, double disc_radius) {
   return g;
 }
 
-// Sums of splatted Mueller blocks (12 floats each) over a set of passes.
+// Sums of splatted Mueller blocks (12 numbers each) over a set of passes. In double: the splats
+// arrive in any thread order, and double sums rounded to the response's floats come out the same
+// whatever the order (a render is reproducible bit for bit).
 struct Accumulators {
-  std::vector<float> ref, ref_node, band_node;
+  std::vector<double> ref, ref_node, band_node;
   int passes = 0;
   void assign(const PassGrid& g, int nb) {
-    ref.assign(std::size_t(g.nx) * g.ny * 12, 0.0f);
-    ref_node.assign(std::size_t(g.cnx) * g.cny * 12, 0.0f);
-    band_node.assign(std::size_t(g.cnx) * g.cny * std::size_t(nb) * 12, 0.0f);
+    ref.assign(std::size_t(g.nx) * g.ny * 12, 0.0);
+    ref_node.assign(std::size_t(g.cnx) * g.cny * 12, 0.0);
+    band_node.assign(std::size_t(g.cnx) * g.cny * std::size_t(nb) * 12, 0.0);
     passes = 0;
   }
 };
@@ -197,9 +199,9 @@ class ResponseTracer {
                     Accumulators& acc) {
     for (double v : m)
       if (!std::isfinite(v)) return;
-    const auto add_to = [&](std::vector<float>& dst, std::size_t base, std::size_t i, double wt) {
-      float* d = &dst[(base + i) * 12];
-      for (std::size_t c = 0; c < 12; ++c) atomic_add(d[c], float(m[c] * scale * wt));
+    const auto add_to = [&](std::vector<double>& dst, std::size_t base, std::size_t i, double wt) {
+      double* d = &dst[(base + i) * 12];
+      for (std::size_t c = 0; c < 12; ++c) atomic_add(d[c], m[c] * scale * wt);
     };
     const glm::dvec2 land_node = land / double(g.period);
     if (k == 0) {
@@ -211,8 +213,8 @@ class ResponseTracer {
     const std::size_t nb = acc.band_node.size() / acc.ref_node.size();
     const std::size_t b = std::size_t(k - 1);
     tent_splat(land_node, 1, g.cnx, g.cny, 0.0, [&](std::size_t i, double wt) {
-      float* d = &acc.band_node[(i * nb + b) * 12];
-      for (std::size_t c = 0; c < 12; ++c) atomic_add(d[c], float(m[c] * scale * wt));
+      double* d = &acc.band_node[(i * nb + b) * 12];
+      for (std::size_t c = 0; c < 12; ++c) atomic_add(d[c], m[c] * scale * wt);
     });
   }
 
@@ -253,12 +255,17 @@ std::shared_ptr<SpecimenResponse> develop(const ResponseTracer& t, const Respons
   for (const Accumulators* a : parts) n += a->passes;
   r->passes = n;
   if (n == 0) return r;
-  const float inv = 1.0f / float(n);
+  const double inv = 1.0 / n;
   const auto mean_of = [&](auto member) {
-    std::vector<float> v((parts[0]->*member).size(), 0.0f);
-    for (const Accumulators* a : parts)
-      for (std::size_t i = 0; i < v.size(); ++i) v[i] += (a->*member)[i];
-    for (float& x : v) x *= inv;
+    const std::size_t size = (parts[0]->*member).size();
+    std::vector<float> v(size);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, 1 << 14), [&](const tbb::blocked_range<std::size_t>& rg) {
+      for (std::size_t i = rg.begin(); i < rg.end(); ++i) {
+        double sum = 0.0;
+        for (const Accumulators* a : parts) sum += (a->*member)[i];
+        v[i] = float(sum * inv);
+      }
+    });
     return v;
   };
   r->ref = mean_of(&Accumulators::ref);
@@ -289,6 +296,22 @@ RenderImage compose_progress(const ResponseProgress& p, const InstrumentSettings
   img.converged = p.converged;
   img.stopped = p.stopped;
   return img;
+}
+
+RenderImage render_response_image(const SpecimenScene& scene, const PlaneLightOptions& options,
+                                  const std::function<void(const RenderImage&)>& progress, InterfaceCounters*,
+                                  const std::atomic<bool>* cancel) {
+  ResponseRenderOptions o;
+  o.light = options;
+  o.coverage = ResponseCoverage::Field;
+  o.estimate_at.stage_rad = options.stage_rad;
+  o.estimate_at.polarizer_rad = options.polarizer_rad;
+  o.estimate_at.analyzer_in = options.analyzer_in;
+  o.estimate_at.analyzer_rad = options.analyzer_rad;
+  const auto compose = [&](const ResponseProgress& p) { return compose_progress(p, o.estimate_at); };
+  const ResponseProgress last = render_specimen_response(
+      scene, o, [&](const ResponseProgress& p) { if (progress) progress(compose(p)); }, cancel);
+  return compose(last);
 }
 
 ResponseProgress render_specimen_response(const SpecimenScene& scene, const ResponseRenderOptions& o,
@@ -325,6 +348,7 @@ ResponseProgress render_specimen_response(const SpecimenScene& scene, const Resp
     return state;
   };
 
+  int previewed = 0;  // the preview counts as a pass (as the image renderers count it)
   // The preview: about 48 points across, one pass, the bands on every other point (colour from
   // the first image: a grey preview of a coloured field would mislead).
   const int f = l.preview_factor > 1 ? std::max(l.preview_factor, int(std::ceil(std::max(nx, ny) / 48.0))) : 0;
@@ -341,6 +365,7 @@ ResponseProgress render_specimen_response(const SpecimenScene& scene, const Resp
     r->samples_per_pixel = 0.0;
     state.response = r;
     state.preview = true;
+    previewed = 1;
     if (progress) progress(state);
   }
 
@@ -365,6 +390,7 @@ ResponseProgress render_specimen_response(const SpecimenScene& scene, const Resp
       state.error_estimate = response_difference_de2000(*a, *b, o.estimate_at);
     }
     r->samples_per_pixel = done * traces;
+    r->passes = done + previewed;
     r->time_ms = elapsed_ms();
     state.response = r;
     state.converged = l.tolerance_de2000 > 0.0 && state.error_estimate && *state.error_estimate < l.tolerance_de2000;

@@ -49,6 +49,13 @@ ResponseProgress render_specimen_response(const SpecimenScene& scene, const Resp
                                           const std::function<void(const ResponseProgress&)>& progress = nullptr,
                                           const std::atomic<bool>* cancel = nullptr);
 
+// The response for `options` (Field coverage) composed at its own polarizer, analyzer and stage:
+// the image render_plane_light_forward gives, through the response (the bench's and the tests'
+// drop-in; `counters` unused).
+RenderImage render_response_image(const SpecimenScene& scene, const PlaneLightOptions& options,
+                                  const std::function<void(const RenderImage&)>& progress = nullptr,
+                                  InterfaceCounters* counters = nullptr, const std::atomic<bool>* cancel = nullptr);
+
 // A progress state composed at `instrument`: the image with the progress's estimate, converged
 // flag and stop reason.
 RenderImage compose_progress(const ResponseProgress& progress, const InstrumentSettings& instrument);
