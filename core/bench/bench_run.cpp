@@ -13,6 +13,7 @@
 #include "core/bench/bench_scenes.h"
 #include "core/bench/bench_strategy.h"
 #include "core/bench/grain_mount_bench.h"
+#include "core/bench/response_bench.h"
 #include "core/bench/image_error.h"
 #include "core/bench/reference_image.h"
 #include "core/io/image_file.h"
@@ -136,6 +137,10 @@ BenchReport run_bench(const BenchOptions& opt_in, std::ostream& log) {
   // polar slab takes ~10 s instead of ~40 s at the quick size.
   if (specimen_selected("section-granite-crossed", "crossed-polars"))
     add_rows(section_crossed_bench_rows(opt.quick ? std::min(opt.size, 48) : opt.size, log));
+  // The response/instrument split (issue 21): the default scene's Disc response composed at other
+  // settings; --quick at 32² and no 512² apply-settings timing.
+  if (specimen_selected("response-granite-crossed", "crossed-polars"))
+    add_rows(response_bench_rows(opt.quick ? std::min(opt.size, 32) : opt.size, opt.quick ? 0 : 512, rep.notes, log));
   if (opt.throughput_rays > 0) {
     log << "lens throughput (" << opt.throughput_rays << " rays per measurement, 1 core)…\n";
     rep.throughput = measure_lens_throughput(opt.throughput_rays);

@@ -1,0 +1,154 @@
+#include "core/bench/response_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "core/bench/bench_strategy.h"  // process_cpu_ms
+#include "core/bench/image_error.h"
+#include "core/specimen/forward_response.h"
+#include "core/specimen/grain_mount_render.h"
+#include "core/specimen/section_slab.h"
+#include "core/specimen/traced_specimen.h"
+#include "core/spectrum/cie.h"
+
+namespace pmsim {
+
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+Scene granite_crossed(int size) {
+  Scene s;  // crossed polars: the Scene's defaults
+  s.sample.type = SampleType::Section;
+  s.sample.section = "granite";
+  s.render.width = s.render.height = size;
+  return s;
+}
+
+// A response traced for `scene` (coverage, traces a pixel, stop estimate, seed), as the product
+// traces it.
+ResponseProgress traced(const SpecimenScene& slab, const Scene& scene, ResponseCoverage coverage, int spp,
+                        double tolerance, std::uint64_t seed) {
+  ResponseRenderOptions o;
+  o.light = plane_light_options(scene);
+  o.light.spp = spp;
+  o.light.tolerance_de2000 = tolerance;
+  o.light.seed = seed;
+  o.coverage = coverage;
+  o.estimate_at = instrument_settings(scene);
+  return render_specimen_response(slab, o);
+}
+
+// The median wall time of composing `p` at `in` (n runs).
+double compose_ms(const ResponseProgress& p, const InstrumentSettings& in, int n) {
+  std::vector<double> t;
+  for (int i = 0; i < n; ++i) {
+    const double t0 = now_ms();
+    const RenderImage img = compose_progress(p, in);
+    t.push_back(now_ms() - t0);
+    if (img.width == 0) break;
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+}  // namespace
+
+std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vector<std::string>& notes,
+                                          std::ostream& log) {
+  const int n = std::min(size, 256);
+  const Scene base = granite_crossed(n);
+  const auto slab = section_slab(base);
+  const glm::dvec3 white = illuminant_white_xyz(base.illuminant);
+  log << "scene response-granite-crossed (" << n << "²): Disc response, 64 traces a pixel… " << std::flush;
+  const double cpu0 = process_cpu_ms(), t0 = now_ms();
+  const ResponseProgress disc = traced(*slab, base, ResponseCoverage::Disc, 64, 1.0, 1);
+  const double disc_ms = now_ms() - t0, disc_cpu = process_cpu_ms() - cpu0;
+  log << disc_ms << " ms, estimate " << disc.error_estimate.value_or(-1.0) << "\n";
+
+  struct Case {
+    std::string name;
+    Scene scene;
+  };
+  std::vector<Case> cases = {{"stage30", base}, {"gypsum-stage30", base}, {"polars40", base}};
+  cases[0].scene.stage_deg = 30.0;
+  cases[1].scene.stage_deg = 30.0;
+  cases[1].scene.compensator = Compensator::Gypsum;
+  cases[2].scene.polarizer_deg = 40.0;
+  cases[2].scene.analyzer_deg = 130.0;
+  std::vector<BenchRow> rows;
+  const auto row = [&](const std::string& strategy, const RenderImage& img, const RenderImage& ref, double ms,
+                       double cpu_ms, const std::string& what) {
+    const ImageError e = image_error_de2000(img.xyz, ref.xyz, {}, white);
+    BenchRow r;
+    r.scene = "response-granite-crossed";
+    r.strategy = strategy;
+    r.width = r.height = n;
+    r.time_ms = ms;
+    r.cpu_ms = cpu_ms;
+    r.mean_de2000 = e.mean_de2000;
+    r.p95_de2000 = e.p95_de2000;
+    r.max_de2000 = e.max_de2000;
+    r.wavelengths = img.wavelengths;
+    r.renderer_estimate = img.error_estimate.value_or(-1.0);
+    r.code = "product";
+    r.model_report = what;
+    log << "  " << strategy << ": " << ms << " ms, mean ΔE00 " << e.mean_de2000 << "\n";
+    rows.push_back(r);
+  };
+  double fresh_ms = 0.0;
+  for (const Case& c : cases) {
+    const InstrumentSettings in = instrument_settings(c.scene);
+    log << "  " << c.name << ": reference (256 traces, seed 2)… " << std::flush;
+    const RenderImage ref = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, 256, 0.0, 2), in);
+    log << ref.time_ms << " ms, estimate " << ref.error_estimate.value_or(-1.0) << "\n";
+    const double c0 = process_cpu_ms(), f0 = now_ms();
+    const RenderImage fresh = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, 64, 1.0, 1), in);
+    const double f_ms = now_ms() - f0;
+    if (c.name == "stage30") fresh_ms = f_ms;
+    row(c.name + "-fresh-64spp", fresh, ref, f_ms, process_cpu_ms() - c0, "a fresh render at these settings");
+    const double ms = compose_ms(disc, in, 7);
+    row(c.name + "-composed", compose_progress(disc, in), ref, ms, ms,
+        "the Disc response (64 traces, " + std::to_string(int(disc_ms)) + " ms) composed at these settings; time = "
+        "applying the settings (median of 7)");
+  }
+  // A 19-frame stage sweep (0°…180° by 10°) from the Disc response, against one fresh render.
+  double sweep_ms = disc_ms;
+  for (int k = 0; k < 19; ++k) {
+    Scene s = base;
+    s.stage_deg = 10.0 * k;
+    sweep_ms += compose_ms(disc, instrument_settings(s), 1);
+  }
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "response %d²: Disc response %.0f ms (cpu %.0f ms); a 19-frame stage sweep from it %.0f ms = %.2f× one "
+                "fresh 64-trace render (%.0f ms)",
+                n, disc_ms, disc_cpu, sweep_ms, sweep_ms / std::max(1.0, fresh_ms), fresh_ms);
+  notes.push_back(buf);
+  log << "  " << buf << "\n";
+  if (compose_size > 0) {
+    // The frame's work at the app's size: a 1-pass Disc response (its cost does not depend on passes).
+    const Scene big = granite_crossed(compose_size);
+    const auto big_slab = section_slab(big);
+    const ResponseProgress one = traced(*big_slab, big, ResponseCoverage::Disc, 3, 0.0, 1);
+    Scene turned = big;
+    turned.stage_deg = 30.0;
+    Scene plate = turned;
+    plate.compensator = Compensator::Gypsum;
+    const double plain = compose_ms(one, instrument_settings(turned), 15);
+    const double with_plate = compose_ms(one, instrument_settings(plate), 15);
+    std::snprintf(buf, sizeof buf,
+                  "applying the settings to a %d² Disc response (%d×%d grid): %.2f ms (stage 30°), %.2f ms with the "
+                  "gypsum plate (median of 15)",
+                  compose_size, one.response->nx, one.response->ny, plain, with_plate);
+    notes.push_back(buf);
+    log << "  " << buf << "\n";
+  }
+  return rows;
+}
+
+}  // namespace pmsim

@@ -1,0 +1,19 @@
+#pragma once
+// The bench rows of the response/instrument split (issue 21) on the default scene, the granite
+// section between crossed polars: one Disc response (the app's), composed at a turned stage and
+// with the gypsum plate, against fresh renders at those settings and a 4×-work reference at each;
+// what applying the settings costs (the frame's work), and a 19-frame stage sweep against one
+// render.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/bench/bench_run.h"
+
+namespace pmsim {
+
+// Rows at min(size, 256)²; `notes` gets the apply-settings time at compose_size² (0: skip).
+std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vector<std::string>& notes,
+                                          std::ostream& log);
+
+}  // namespace pmsim
