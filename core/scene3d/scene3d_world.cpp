@@ -43,7 +43,10 @@ void rectangle(const glm::dvec3& c, const glm::dvec3& n, const glm::dvec3& u, gl
 }  // namespace
 
 Scene3dWorld::Scene3dWorld(const Scene3dDescription& desc) : desc_(desc) {
-  device_ = rtcNewDevice(nullptr);
+  // One kernel on every machine: Embree picks its widest ISA, and its AVX-512 and AVX2 kernels
+  // round hit distances differently, enough to move a ray across a lens rim (the golden images of
+  // tests/golden/, taken on an AVX-512 machine, differed by up to 0.03 on an AVX2-only one).
+  device_ = rtcNewDevice("max_isa=avx2");
   if (!device_) throw std::runtime_error("cannot create an Embree device");
   rtcSetDeviceErrorFunction(device_, embree_error, &embree_message_);
   scene_ = rtcNewScene(device_);
