@@ -3,11 +3,11 @@
 // block a pair of Jones matrices adds to a partially coherent sum (docs/physics.md, "One response,
 // many settings").
 //
-// Conventions (Born & Wolf §10.8; Goldstein, Polarized Light, 3rd ed., ch. 4–5): a field
+// Conventions (Born & Wolf §10.8; Goldstein, Polarized Light, 3rd ed., ch. 5–6): a field
 // E = (E_x, E_y) in the lab (or specimen) frame; the coherency matrix ρ = E E† = ½ Σ_j S_j σ_j with
 // σ_0 = 1, σ_1 = diag(1, −1) (Q: x minus y), σ_2 = [[0, 1], [1, 0]] (U: +45° minus −45°),
 // σ_3 = [[0, −i], [i, 0]] (V), so S_j = tr(ρ σ_j). A Jones matrix J acts as ρ → J ρ J†; its Mueller
-// matrix is M_ij = ½ tr(σ_i J σ_j J†) (Goldstein eq. 5-47). For two Jones matrices A, B (two
+// matrix is M_ij = ½ tr(σ_i J σ_j J†) (Azzam & Bashara ch. 2). For two Jones matrices A, B (two
 // branches of one path, summed with coherence γ) the cross term A ρ B† has the matrix
 // K(A, B)_ij = ½ tr(σ_i A σ_j B†); Re(h† A p (h† B p)*) = ½ Σ_ij s_i Re K_ij t_j for a real Stokes
 // pair (s of the analyzer's state h, t of the input p), so Re K is what a branch's share adds.
@@ -34,7 +34,7 @@ inline std::array<double, 4> linear_stokes(double angle_rad) {
 }
 
 // The Mueller matrix of a linear retarder of retardance delta_rad whose slow axis lies at
-// slow_rad from +x (Goldstein eq. 4-45 with the slow axis as reference): written as
+// slow_rad from +x (from its Jones matrix R(ψ)·diag(e^{iδ/2}, e^{−iδ/2})·R(−ψ)): written as
 // C0 + cos δ·C1 + sin δ·C2 with C0, C1, C2 depending on the axis only, so that a spectrum of
 // retardances is summed as three weighted sums (core/specimen/specimen_response.h).
 struct RetarderTerms {

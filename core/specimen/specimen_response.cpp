@@ -5,6 +5,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/base/units.h"
 #include "core/microscope/compensator.h"
@@ -139,20 +140,7 @@ float bilinear(const std::vector<float>& v, int w, int h, int c, int k, double x
   return float((1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1.0 - fx) * at(x0, y1) + fx * at(x1, y1)));
 }
 
-}  // namespace
-
-InstrumentSettings instrument_settings(const Scene& scene) {
-  InstrumentSettings in;
-  in.stage_rad = radians(scene.stage_deg);
-  in.polarizer_rad = radians(scene.polarizer_deg);
-  in.analyzer_in = scene.analyzer_in;
-  in.analyzer_rad = radians(scene.analyzer_deg);
-  in.compensator = scene.compensator;
-  in.compensator_position = scene.compensator_position;
-  return in;
-}
-
-RenderImage compose_response(const SpecimenResponse& r, const InstrumentSettings& in) {
+RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings& in) {
   RenderImage img;
   const int w = r.image_width, h = r.image_height;
   img.width = w;
@@ -199,6 +187,27 @@ RenderImage compose_response(const SpecimenResponse& r, const InstrumentSettings
         }
       }
   });
+  return img;
+}
+
+}  // namespace
+
+InstrumentSettings instrument_settings(const Scene& scene) {
+  InstrumentSettings in;
+  in.stage_rad = radians(scene.stage_deg);
+  in.polarizer_rad = radians(scene.polarizer_deg);
+  in.analyzer_in = scene.analyzer_in;
+  in.analyzer_rad = radians(scene.analyzer_deg);
+  in.compensator = scene.compensator;
+  in.compensator_position = scene.compensator_position;
+  return in;
+}
+
+RenderImage compose_response(const SpecimenResponse& r, const InstrumentSettings& in) {
+  // Isolated: a UI thread composing while the tracer's passes run in the same arena must not pick
+  // up a tracer task (tens of ms) while it waits for its own.
+  RenderImage img;
+  tbb::this_task_arena::isolate([&] { img = compose_isolated(r, in); });
   return img;
 }
 
