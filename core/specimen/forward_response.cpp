@@ -332,8 +332,14 @@ ResponseProgress render_specimen_response(const SpecimenScene& scene, const Resp
   if (o.coverage == ResponseCoverage::Disc) {
     const double diag = std::sqrt(double(l.width) * l.width + double(l.height) * l.height);
     radius = 0.5 * diag + 1.5;
-    nx = l.width + 2 * int(std::ceil(0.5 * (diag + 3.0 - l.width)));
-    ny = l.height + 2 * int(std::ceil(0.5 * (diag + 3.0 - l.height)));
+    // The margin a whole number of λ-pattern blocks (K·P points: chroma nodes and their 2×2 λ
+    // pattern), so that at the frame's angle the Disc traces the Field's rays and its chroma nodes
+    // sit where the Field's do: the two give one image there, and a turned stage differs from a
+    // fresh render only by the resampling and the chroma subgrid's other phase.
+    const int block = kLambdasPerBand * P;
+    const auto margin = [&](int side) { return block * int(std::ceil(0.5 * (diag + 3.0 - side) / block)); };
+    nx = l.width + 2 * margin(l.width);
+    ny = l.height + 2 * margin(l.height);
   }
   const PassGrid grid = make_grid(nx, ny, l.um_per_px, P, radius);
   SampleDims shift;

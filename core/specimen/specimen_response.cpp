@@ -19,17 +19,6 @@ namespace {
 using Stokes = std::array<double, 4>;
 using Vec4 = std::array<double, 4>;
 
-// vᵀ·B·t for a 12-number block (rows I Q U V, columns I Q U) and t's first three entries.
-template <class T>
-double contract(const Vec4& v, const T* b, const Stokes& t) {
-  double sum = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    if (v[std::size_t(i)] == 0.0) continue;
-    sum += v[std::size_t(i)] * (double(b[3 * i]) * t[0] + double(b[3 * i + 1]) * t[1] + double(b[3 * i + 2]) * t[2]);
-  }
-  return sum;
-}
-
 // ½·Cᵀ·s: the analyzer's state seen through the accessory (I = ½ sᵀ C M t = (½ Cᵀ s)ᵀ M t).
 Vec4 through(const Mueller4& c, const Stokes& s) {
   Vec4 v{};
@@ -58,7 +47,22 @@ struct FrameFields {
   std::vector<float> grid;   // nx·ny × channels
   std::vector<float> nodes;  // cnx·cny × 3
   int channels = 1;
+  glm::dvec3 grid_scale{1.0};  // one channel: XYZ = grid_scale × value
 };
+
+// The 12 weights u = v ⊗ t of a block for an analyzer-side v and an input t: vᵀ·B·t = u·B.
+using Weights12 = std::array<float, 12>;
+Weights12 weights(const Vec4& v, const Stokes& t) {
+  Weights12 u{};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) u[std::size_t(3 * i + k)] = float(v[std::size_t(i)] * t[std::size_t(k)]);
+  return u;
+}
+inline float dot12(const Weights12& u, const float* b) {
+  float sum = 0.0f;
+  for (std::size_t j = 0; j < 12; ++j) sum += u[j] * b[j];
+  return sum;
+}
 
 FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in) {
   // The blocks' vibrations are the specimen's own x and y (the tracer's frame): a lab angle ψ is
@@ -98,31 +102,44 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
         }
     }
   }
-  f.channels = mono ? 1 : 3;
+  // Without an accessory (or in monochromatic light) every band sees the same analyzer, so X, Y
+  // and Z of the reference block are one contraction times the bands' white: one number a point.
+  const bool one = mono || !accessory;
+  f.channels = one ? 1 : 3;
+  const Vec4 v_plain = {0.5 * s[0], 0.5 * s[1], 0.5 * s[2], 0.5 * s[3]};
+  std::array<Weights12, 3> u_ref{};
+  if (one) {
+    u_ref[0] = weights(mono ? v_ref[0] : v_plain, t);
+    f.grid_scale = mono ? r.white : r.bands.sum;
+  } else {
+    for (std::size_t k = 0; k < 3; ++k) u_ref[k] = weights(v_ref[k], t);
+  }
   const std::size_t n = std::size_t(r.nx) * std::size_t(r.ny);
   f.grid.assign(n * std::size_t(f.channels), 0.0f);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& rg) {
     for (std::size_t g = rg.begin(); g < rg.end(); ++g)
       for (int k = 0; k < f.channels; ++k)
-        f.grid[g * std::size_t(f.channels) + std::size_t(k)] =
-            float(contract(v_ref[std::size_t(k)], &r.ref[g * 12], t));
+        f.grid[g * std::size_t(f.channels) + std::size_t(k)] = dot12(u_ref[std::size_t(k)], &r.ref[g * 12]);
   });
   if (mono || r.delta.empty()) return f;
   const std::size_t nn = std::size_t(r.cnx) * std::size_t(r.cny);
   f.nodes.assign(nn * 3, 0.0f);
-  // Without an accessory every band sees the same analyzer: the colour-weighted blocks.
-  const Vec4 v_plain = {0.5 * s[0], 0.5 * s[1], 0.5 * s[2], 0.5 * s[3]};
+  // Without an accessory, the colour-weighted blocks; with one, each band's.
+  const Weights12 u_plain = weights(v_plain, t);
+  std::vector<std::array<Weights12, 3>> u_band(static_cast<std::size_t>(nb));
+  if (accessory)
+    for (std::size_t b = 0; b < std::size_t(nb); ++b)
+      for (std::size_t k = 0; k < 3; ++k) u_band[b][k] = weights(v_band[b][k], t);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nn, 256), [&](const tbb::blocked_range<std::size_t>& rg) {
     for (std::size_t q = rg.begin(); q < rg.end(); ++q)
-      for (int k = 0; k < 3; ++k) {
-        double sum = 0.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        float sum = 0.0f;
         if (!accessory) {
-          sum = contract(v_plain, &r.delta_xyz[(q * 3 + std::size_t(k)) * 12], t);
+          sum = dot12(u_plain, &r.delta_xyz[(q * 3 + k) * 12]);
         } else {
-          for (int b = 0; b < nb; ++b)
-            sum += contract(v_band[std::size_t(b)][std::size_t(k)], &r.delta[(q * std::size_t(nb) + std::size_t(b)) * 12], t);
+          for (std::size_t b = 0; b < std::size_t(nb); ++b) sum += dot12(u_band[b][k], &r.delta[(q * std::size_t(nb) + b) * 12]);
         }
-        f.nodes[q * 3 + std::size_t(k)] = float(sum);
+        f.nodes[q * 3 + k] = sum;
       }
   });
   return f;
@@ -169,16 +186,14 @@ RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings
         const double gy = 0.5 * (r.ny - 1) - (aligned ? fy : -s * fx + c * fy);
         glm::dvec3 xyz(0.0);
         const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
-        if (mono) {
-          const double v = aligned ? f.grid[pix] : bilinear(f.grid, r.nx, r.ny, 1, 0, gx, gy);
-          xyz = std::max(0.0, v) * r.white;
-        } else {
-          const double nxp = (gx - r.chroma_origin) / P, nyp = (gy - r.chroma_origin) / P;
-          for (int k = 0; k < 3; ++k) {
-            const double g = aligned ? f.grid[pix * 3 + std::size_t(k)] : bilinear(f.grid, r.nx, r.ny, 3, k, gx, gy);
-            const double d = f.nodes.empty() ? 0.0 : bilinear(f.nodes, r.cnx, r.cny, 3, k, nxp, nyp);
-            xyz[k] = std::max(0.0, g + d);
-          }
+        const double nxp = (gx - r.chroma_origin) / P, nyp = (gy - r.chroma_origin) / P;
+        const double g1 = f.channels == 1 ? (aligned ? f.grid[pix] : bilinear(f.grid, r.nx, r.ny, 1, 0, gx, gy)) : 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double g = f.channels == 1 ? f.grid_scale[k] * g1
+                           : aligned       ? f.grid[pix * 3 + std::size_t(k)]
+                                           : bilinear(f.grid, r.nx, r.ny, 3, k, gx, gy);
+          const double d = f.nodes.empty() ? 0.0 : bilinear(f.nodes, r.cnx, r.cny, 3, k, nxp, nyp);
+          xyz[k] = std::max(0.0, g + d);
         }
         const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / r.white.y) : xyz_to_linear_srgb(xyz);
         for (int k = 0; k < 3; ++k) {
