@@ -7,7 +7,8 @@
 
 namespace pmsim::ui {
 
-RenderFeed::RenderFeed(int renderer_threads) : renderer_(renderer_threads), thread_([this] { run(); }) {}
+RenderFeed::RenderFeed(int renderer_threads)
+    : renderer_(renderer_threads), thread_([this] { run(); }), composer_([this] { compose_loop(); }) {}
 
 RenderFeed::~RenderFeed() {
   {
@@ -17,6 +18,7 @@ RenderFeed::~RenderFeed() {
   }
   cv_.notify_all();
   thread_.join();
+  composer_.join();
   renderer_.cancel();
 }
 
@@ -30,6 +32,10 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
       ++instrument_version_;
       grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
       submitted_id_ = applied_id_ = id;
+      // A drag submits every frame: the tracer waits until 150 ms after the last change.
+      hold_until_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               (std::chrono::steady_clock::now() + std::chrono::milliseconds(150)).time_since_epoch())
+                               .count());
       cv_.notify_all();
       return;
     }
@@ -117,12 +123,37 @@ void RenderFeed::render_grains(const Scene& scene, std::uint64_t) {
           ++response_version_;
           cv_.notify_all();
         },
-        &grain_cancel_);
+        &grain_cancel_, [this] {
+          return std::chrono::steady_clock::now().time_since_epoch().count() <
+                 std::chrono::steady_clock::duration(std::chrono::nanoseconds(hold_until_ns_.load())).count();
+        });
   } catch (const std::exception& e) {
     // Passed the scene check but the mount could not be built (e.g. an unknown mineral name):
     // reported like a refused scene.
     std::lock_guard<std::mutex> lock(mu_);
     failure_ = Failure{applied_id_, e.what()};
+  }
+}
+
+void RenderFeed::compose_loop() {
+  std::unique_lock<std::mutex> lock(mu_);
+  for (;;) {
+    cv_.wait(lock, [&] {
+      return quit_ || (grains_mode_ && response_latest_.response &&
+                       (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
+    });
+    if (quit_) return;
+    const ResponseProgress progress = response_latest_;  // shares the immutable response
+    const InstrumentSettings instrument = instrument_;
+    const std::uint64_t rv = response_version_, iv = instrument_version_, generation = grain_generation_;
+    lock.unlock();
+    RenderImage img = compose_progress(progress, instrument);
+    img.generation = generation;
+    lock.lock();
+    composed_ = std::move(img);
+    composed_response_ = rv;
+    composed_instrument_ = iv;
+    cv_.notify_all();
   }
 }
 
@@ -137,15 +168,6 @@ bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
   {
     std::lock_guard<std::mutex> lock(mu_);
     if (grains_mode_) {
-      // Compose the newest response at the newest settings when either changed (a few ms: see
-      // core/specimen/specimen_response.h).
-      if (response_latest_.response &&
-          (composed_response_ != response_version_ || composed_instrument_ != instrument_version_)) {
-        composed_ = compose_progress(response_latest_, instrument_);
-        composed_.generation = grain_generation_;
-        composed_response_ = response_version_;
-        composed_instrument_ = instrument_version_;
-      }
       const bool changed = composed_.width > 0 && (out.generation != composed_.generation ||
                                                    out.passes != composed_.passes || out.width != composed_.width ||
                                                    out.stopped != composed_.stopped);

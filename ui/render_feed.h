@@ -11,9 +11,11 @@
 // cached in core, so a focus or aperture change does not rebuild it.
 // Traced specimens are rendered as a response (core/specimen/specimen_response.h) covering the
 // disc the field sweeps: a submission that changes only the instrument (stage angle, polars,
-// accessory, exposure: same_specimen_response) neither cancels nor restarts anything; snapshot()
-// composes the newest response at the newest settings, a few ms, so every frame of a stage drag
-// shows that angle's colours at the response's convergence.
+// accessory, exposure: same_specimen_response) neither cancels nor restarts anything; a composer
+// thread composes the newest response at the newest settings (15 ms at 512² on 2 idle cores,
+// more while the response is still being traced beside it) and snapshot() takes the newest
+// composed image, so the UI thread never waits for a composition and every image of a stage drag
+// shows its angle's colours at the response's convergence.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -53,6 +55,7 @@ class RenderFeed {
 
  private:
   void run();
+  void compose_loop();  // the composer thread
   void render_grains(const Scene& scene, std::uint64_t generation);  // on the feeder thread, unlocked
 
   ProgressiveRenderer renderer_;
@@ -76,10 +79,14 @@ class RenderFeed {
   Scene traced_scene_;                     // the scene the response is rendered for
   InstrumentSettings instrument_;          // the newest submission's settings
   std::uint64_t instrument_version_ = 0;   // bumps with every instrument-only submission
-  mutable RenderImage composed_;           // the response composed at instrument_
-  mutable std::uint64_t composed_response_ = ~0ull, composed_instrument_ = ~0ull;
+  RenderImage composed_;                   // the response composed at instrument_
+  std::uint64_t composed_response_ = ~0ull, composed_instrument_ = ~0ull;
   std::atomic<bool> grain_cancel_{false};
+  // Until this steady-clock time (ns) the response tracer holds (an instrument change was just
+  // submitted: a drag gets the cores for composing and drawing).
+  std::atomic<std::int64_t> hold_until_ns_{0};
   std::thread thread_;
+  std::thread composer_;
 };
 
 }  // namespace pmsim::ui

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -146,6 +147,7 @@ class ResponseTracer {
     const bool with_bands = rays.size() > 1;
     tbb::parallel_for(tbb::blocked_range<int>(-m, g.ny + m), [&](const tbb::blocked_range<int>& rows) {
       for (int j = rows.begin(); j < rows.end(); ++j) {
+        while (o_.hold && o_.hold() && !cancelled()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
         if (cancelled()) break;
         for (int i = -m; i < g.nx + m; ++i) {
           const double fx = i - cx + jx - 0.5, fy = cy - j - jy + 0.5;  // frame offset, points

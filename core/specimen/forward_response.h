@@ -35,6 +35,10 @@ struct ResponseRenderOptions {
   ResponseCoverage coverage = ResponseCoverage::Field;
   InstrumentSettings estimate_at;  // the settings the split-half estimate is judged at
   std::string model_report;        // the specimen's words for what it became
+  // Polled before every source row (from the worker threads): while it returns true the pass
+  // waits, so that an interactive client can give the cores to composing and drawing while the
+  // user turns the stage (the response keeps serving every frame meanwhile). Null: never.
+  std::function<bool()> hold;
 };
 
 struct ResponseProgress {

@@ -131,62 +131,84 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
     for (std::size_t b = 0; b < std::size_t(nb); ++b)
       for (std::size_t k = 0; k < 3; ++k) u_band[b][k] = weights(v_band[b][k], t);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nn, 256), [&](const tbb::blocked_range<std::size_t>& rg) {
-    for (std::size_t q = rg.begin(); q < rg.end(); ++q)
-      for (std::size_t k = 0; k < 3; ++k) {
-        float sum = 0.0f;
-        if (!accessory) {
-          sum = dot12(u_plain, &r.delta_xyz[(q * 3 + k) * 12]);
-        } else {
-          for (std::size_t b = 0; b < std::size_t(nb); ++b) sum += dot12(u_band[b][k], &r.delta[(q * std::size_t(nb) + b) * 12]);
+    for (std::size_t q = rg.begin(); q < rg.end(); ++q) {
+      float sum[3] = {0.0f, 0.0f, 0.0f};
+      if (!accessory) {
+        for (std::size_t k = 0; k < 3; ++k) sum[k] = dot12(u_plain, &r.delta_xyz[(q * 3 + k) * 12]);
+      } else {
+        // Three independent sums a band (X, Y, Z over the same 12 numbers).
+        for (std::size_t b = 0; b < std::size_t(nb); ++b) {
+          const float* d = &r.delta[(q * std::size_t(nb) + b) * 12];
+          const std::array<Weights12, 3>& u = u_band[b];
+          for (std::size_t j = 0; j < 12; ++j) {
+            sum[0] += u[0][j] * d[j];
+            sum[1] += u[1][j] * d[j];
+            sum[2] += u[2][j] * d[j];
+          }
         }
-        f.nodes[q * 3 + k] = sum;
       }
+      for (std::size_t k = 0; k < 3; ++k) f.nodes[q * 3 + k] = sum[k];
+    }
   });
   return f;
 }
 
-// Bilinear sample of a field of w × h points (channels c, channel k) at (x, y) in point units;
-// points outside are extended from the edge.
-float bilinear(const std::vector<float>& v, int w, int h, int c, int k, double x, double y) {
+// The points and weights a sample at (x, y) (in point units, clamped to the field) reads from a
+// field of w × h points: computed once a pixel and applied to every channel.
+struct Taps {
+  std::array<std::uint32_t, 16> at{};
+  std::array<float, 16> wt{};
+  int n = 0;
+  float apply(const std::vector<float>& v, int channels, int k) const {
+    float sum = 0.0f;
+    for (int i = 0; i < n; ++i) sum += wt[std::size_t(i)] * v[std::size_t(at[std::size_t(i)]) * std::size_t(channels) + std::size_t(k)];
+    return sum;
+  }
+};
+
+Taps bilinear_taps(int w, int h, double x, double y) {
   x = std::clamp(x, 0.0, double(w - 1));
   y = std::clamp(y, 0.0, double(h - 1));
-  const int x0 = std::min(int(x), w - 2 < 0 ? 0 : w - 2), y0 = std::min(int(y), h - 2 < 0 ? 0 : h - 2);
+  const int x0 = std::min(int(x), std::max(w - 2, 0)), y0 = std::min(int(y), std::max(h - 2, 0));
   const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-  const double fx = x - x0, fy = y - y0;
-  const auto at = [&](int i, int j) { return double(v[(std::size_t(j) * std::size_t(w) + std::size_t(i)) * std::size_t(c) + std::size_t(k)]); };
-  return float((1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1.0 - fx) * at(x0, y1) + fx * at(x1, y1)));
+  const float fx = float(x - x0), fy = float(y - y0);
+  Taps t;
+  t.n = 4;
+  t.at = {std::uint32_t(y0 * w + x0), std::uint32_t(y0 * w + x1), std::uint32_t(y1 * w + x0), std::uint32_t(y1 * w + x1)};
+  t.wt = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  return t;
 }
 
 // Catmull–Rom (Keys 1981, a = −½) weights of the four points around fractional position t.
-inline void keys_weights(double t, double w[4]) {
-  const double t2 = t * t, t3 = t2 * t;
-  w[0] = -0.5 * t3 + t2 - 0.5 * t;
-  w[1] = 1.5 * t3 - 2.5 * t2 + 1.0;
-  w[2] = -1.5 * t3 + 2.0 * t2 + 0.5 * t;
-  w[3] = 0.5 * t3 - 0.5 * t2;
+inline void keys_weights(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t;
+  w[0] = -0.5f * t3 + t2 - 0.5f * t;
+  w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
+  w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
+  w[3] = 0.5f * t3 - 0.5f * t2;
 }
 
-// Cubic-convolution sample (Keys 1981) of one channel: interpolating, and its passband is flat
-// far closer to the grid's Nyquist limit than a bilinear tent's, so that a turned stage adds
-// little blur to the tent-splatted grid (a fresh render at that angle has the splat's blur only).
-float cubic(const std::vector<float>& v, int w, int h, int c, int k, double x, double y) {
+// Cubic convolution (Keys 1981): interpolating, and its passband is flat far closer to the grid's
+// Nyquist limit than a bilinear tent's, so that a turned stage adds little blur to the
+// tent-splatted grid (a fresh render at that angle has the splat's blur only).
+Taps cubic_taps(int w, int h, double x, double y) {
   x = std::clamp(x, 0.0, double(w - 1));
   y = std::clamp(y, 0.0, double(h - 1));
   const int x0 = int(x), y0 = int(y);
-  double wx[4], wy[4];
-  keys_weights(x - x0, wx);
-  keys_weights(y - y0, wy);
-  double sum = 0.0;
+  float wx[4], wy[4];
+  keys_weights(float(x - x0), wx);
+  keys_weights(float(y - y0), wy);
+  Taps t;
+  t.n = 16;
   for (int j = 0; j < 4; ++j) {
     const int yy = std::clamp(y0 - 1 + j, 0, h - 1);
-    double row = 0.0;
     for (int i = 0; i < 4; ++i) {
       const int xx = std::clamp(x0 - 1 + i, 0, w - 1);
-      row += wx[i] * double(v[(std::size_t(yy) * std::size_t(w) + std::size_t(xx)) * std::size_t(c) + std::size_t(k)]);
+      t.at[std::size_t(4 * j + i)] = std::uint32_t(yy * w + xx);
+      t.wt[std::size_t(4 * j + i)] = wx[i] * wy[j];
     }
-    sum += wy[j] * row;
   }
-  return float(sum);
+  return t;
 }
 
 RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings& in) {
@@ -218,14 +240,16 @@ RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings
         const double gy = 0.5 * (r.ny - 1) - (aligned ? fy : -s * fx + c * fy);
         glm::dvec3 xyz(0.0);
         const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
-        const double nxp = (gx - r.chroma_origin) / P, nyp = (gy - r.chroma_origin) / P;
-        const double g1 = f.channels == 1 ? (aligned ? f.grid[pix] : cubic(f.grid, r.nx, r.ny, 1, 0, gx, gy)) : 0.0;
+        const Taps g_taps = aligned ? Taps{} : cubic_taps(r.nx, r.ny, gx, gy);
+        const Taps n_taps = f.nodes.empty() ? Taps{}
+                                            : bilinear_taps(r.cnx, r.cny, (gx - r.chroma_origin) / P,
+                                                            (gy - r.chroma_origin) / P);
+        const double g1 = f.channels == 1 ? (aligned ? f.grid[pix] : g_taps.apply(f.grid, 1, 0)) : 0.0;
         for (int k = 0; k < 3; ++k) {
           const double g = f.channels == 1 ? f.grid_scale[k] * g1
                            : aligned       ? f.grid[pix * 3 + std::size_t(k)]
-                                           : cubic(f.grid, r.nx, r.ny, 3, k, gx, gy);
-          const double d = f.nodes.empty() ? 0.0 : bilinear(f.nodes, r.cnx, r.cny, 3, k, nxp, nyp);
-          xyz[k] = std::max(0.0, g + d);
+                                           : g_taps.apply(f.grid, 3, k);
+          xyz[k] = std::max(0.0, g + double(n_taps.apply(f.nodes, 3, k)));
         }
         const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / r.white.y) : xyz_to_linear_srgb(xyz);
         for (int k = 0; k < 3; ++k) {

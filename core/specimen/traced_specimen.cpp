@@ -45,11 +45,13 @@ ResponseRenderOptions traced_response_options(const Scene& scene, ResponseCovera
 
 ResponseProgress render_traced_response(const Scene& scene, ResponseCoverage coverage,
                                         const std::function<void(const ResponseProgress&)>& progress,
-                                        const std::atomic<bool>* cancel) {
+                                        const std::atomic<bool>* cancel, const std::function<bool()>& hold) {
   if (!is_traced_specimen(scene)) throw std::invalid_argument("render_traced_response: not a traced specimen");
   const std::shared_ptr<const SpecimenScene> specimen =
       scene.sample.type == SampleType::Grains ? grain_mount_specimen_cached(scene) : section_slab(scene);
-  return render_specimen_response(*specimen, traced_response_options(scene, coverage), progress, cancel);
+  ResponseRenderOptions o = traced_response_options(scene, coverage);
+  o.hold = hold;
+  return render_specimen_response(*specimen, o, progress, cancel);
 }
 
 bool same_specimen_response(const Scene& rendered, const Scene& next) {

@@ -24,9 +24,11 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
 // progressively (the callback sees each developed state), to be composed at any instrument
 // setting. Field: the scene's image only (a single render); Disc: everything the field sweeps as
 // the stage turns (the app, a stage sweep).
+// `hold`: ResponseRenderOptions::hold.
 ResponseProgress render_traced_response(const Scene& scene, ResponseCoverage coverage,
                                         const std::function<void(const ResponseProgress&)>& progress = nullptr,
-                                        const std::atomic<bool>* cancel = nullptr);
+                                        const std::atomic<bool>* cancel = nullptr,
+                                        const std::function<bool()>& hold = nullptr);
 
 // Whether a response rendered for `rendered` serves `next` as it is: they differ only in the
 // instrument (stage angle, polarizer, analyzer, accessory, wedge position) and in the exposure.
