@@ -58,15 +58,16 @@ double compose_ms(const ResponseProgress& p, const InstrumentSettings& in, int n
 
 }  // namespace
 
-std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vector<std::string>& notes,
+std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick, std::vector<std::string>& notes,
                                           std::ostream& log) {
   const int n = std::min(size, 256);
+  const int spp = quick ? 8 : 64, ref_spp = quick ? 32 : 256, runs = quick ? 3 : 7;
   const Scene base = granite_crossed(n);
   const auto slab = section_slab(base);
   const glm::dvec3 white = illuminant_white_xyz(base.illuminant);
-  log << "scene response-granite-crossed (" << n << "²): Disc response, 64 traces a pixel… " << std::flush;
+  log << "scene response-granite-crossed (" << n << "²): Disc response, " << spp << " traces a pixel… " << std::flush;
   const double cpu0 = process_cpu_ms(), t0 = now_ms();
-  const ResponseProgress disc = traced(*slab, base, ResponseCoverage::Disc, 64, 1.0, 1);
+  const ResponseProgress disc = traced(*slab, base, ResponseCoverage::Disc, spp, 1.0, 1);
   const double disc_ms = now_ms() - t0, disc_cpu = process_cpu_ms() - cpu0;
   log << disc_ms << " ms, estimate " << disc.error_estimate.value_or(-1.0) << "\n";
 
@@ -103,18 +104,18 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vecto
   double fresh_ms = 0.0;
   for (const Case& c : cases) {
     const InstrumentSettings in = instrument_settings(c.scene);
-    log << "  " << c.name << ": reference (256 traces, seed 2)… " << std::flush;
-    const RenderImage ref = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, 256, 0.0, 2), in);
+    log << "  " << c.name << ": reference (" << ref_spp << " traces, seed 2)… " << std::flush;
+    const RenderImage ref = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, ref_spp, 0.0, 2), in);
     log << ref.time_ms << " ms, estimate " << ref.error_estimate.value_or(-1.0) << "\n";
     const double c0 = process_cpu_ms(), f0 = now_ms();
-    const RenderImage fresh = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, 64, 1.0, 1), in);
+    const RenderImage fresh = compose_progress(traced(*slab, c.scene, ResponseCoverage::Field, spp, 1.0, 1), in);
     const double f_ms = now_ms() - f0;
     if (c.name == "stage30") fresh_ms = f_ms;
-    row(c.name + "-fresh-64spp", fresh, ref, f_ms, process_cpu_ms() - c0, "a fresh render at these settings");
-    const double ms = compose_ms(disc, in, 7);
+    row(c.name + "-fresh-" + std::to_string(spp) + "spp", fresh, ref, f_ms, process_cpu_ms() - c0, "a fresh render at these settings");
+    const double ms = compose_ms(disc, in, runs);
     row(c.name + "-composed", compose_progress(disc, in), ref, ms, ms,
-        "the Disc response (64 traces, " + std::to_string(int(disc_ms)) + " ms) composed at these settings; time = "
-        "applying the settings (median of 7)");
+        "the Disc response (" + std::to_string(spp) + " traces, " + std::to_string(int(disc_ms)) +
+            " ms) composed at these settings; time = applying the settings (median of " + std::to_string(runs) + ")");
   }
   // A 19-frame stage sweep (0°…180° by 10°) from the Disc response, against one fresh render.
   double sweep_ms = disc_ms;
@@ -126,8 +127,8 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vecto
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "response %d²: Disc response %.0f ms (cpu %.0f ms); a 19-frame stage sweep from it %.0f ms = %.2f× one "
-                "fresh 64-trace render (%.0f ms)",
-                n, disc_ms, disc_cpu, sweep_ms, sweep_ms / std::max(1.0, fresh_ms), fresh_ms);
+                "fresh %d-trace render (%.0f ms)",
+                n, disc_ms, disc_cpu, sweep_ms, sweep_ms / std::max(1.0, fresh_ms), spp, fresh_ms);
   notes.push_back(buf);
   log << "  " << buf << "\n";
   if (compose_size > 0) {

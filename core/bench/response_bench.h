@@ -13,7 +13,9 @@
 namespace pmsim {
 
 // Rows at min(size, 256)²; `notes` gets the apply-settings time at compose_size² (0: skip).
-std::vector<BenchRow> response_bench_rows(int size, int compose_size, std::vector<std::string>& notes,
+// `quick` (--quick, what tests/bench_json_test.cpp runs, also under the sanitizers): 8 traces a
+// pixel for the product and 32 for the references instead of 64 and 256, the rows' shape only.
+std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick, std::vector<std::string>& notes,
                                           std::ostream& log);
 
 }  // namespace pmsim
