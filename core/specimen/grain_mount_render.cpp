@@ -71,31 +71,12 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
   return o;
 }
 
-namespace {
-
-// The last mount built, by what it depends on (mineral, liquid). A crystal given by its indices
-// is rebuilt every time (no key for it here).
-std::shared_ptr<const SpecimenScene> cached_specimen(const Scene& scene) {
+std::shared_ptr<const SpecimenScene> grain_mount_specimen_cached(const Scene& scene) {
   static LastBuilt<SpecimenScene> cache;
   if (scene.sample.crystal) return grain_mount_specimen(scene);
   const std::string key = scene.sample.mineral + "|" +
                           std::to_string(scene.sample.medium_index.value_or(kDefaultGrainMountIndex));
   return cache.get(key, [&] { return grain_mount_specimen(scene); });
-}
-
-}  // namespace
-
-std::shared_ptr<const SpecimenScene> grain_mount_specimen_cached(const Scene& scene) { return cached_specimen(scene); }
-
-RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress,
-                               const std::atomic<bool>* cancel) {
-  const auto specimen = cached_specimen(scene);
-  // Forward from the condenser (forward_plane_light.h), as the thin sections: on the 256² garnet
-  // mount it reached a split-half estimate below 1 in 0.68 s (mean ΔE00 0.44), where backward
-  // from the pixels took 7.2 s for 4.3 at its 256-path cap.
-  const PlaneLightOptions o = plane_light_options(scene);
-  return render_plane_light_forward_as("grain mount: " + forward_model_report(o.analyzer_in), *specimen, o, progress,
-                                       cancel);
 }
 
 }  // namespace pmsim

@@ -31,11 +31,8 @@ std::unique_ptr<SpecimenScene> grain_mount_specimen(const Scene& scene);
 // The view: field of view, stage, focus, apertures, polarizer, analyzer, illuminant and samples of `scene`
 // (render.spp; 0: 64 samples a pixel).
 PlaneLightOptions plane_light_options(const Scene& scene);
-// `cancel` (optional): as render_plane_light's — the interactive app leaves a scene with it.
-// The mount render_grain_mount traces (the last one built is kept, by mineral and liquid).
+// The mount a grain-mount scene traces (render_traced_response): the last one built is kept, by
+// mineral and liquid; a crystal given by its indices is rebuilt every time.
 std::shared_ptr<const SpecimenScene> grain_mount_specimen_cached(const Scene& scene);
-
-RenderImage render_grain_mount(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
-                               const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace pmsim

@@ -242,8 +242,7 @@ RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings
         const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
         const Taps g_taps = aligned ? Taps{} : cubic_taps(r.nx, r.ny, gx, gy);
         const Taps n_taps = f.nodes.empty() ? Taps{}
-                                            : bilinear_taps(r.cnx, r.cny, (gx - r.chroma_origin) / P,
-                                                            (gy - r.chroma_origin) / P);
+                                            : bilinear_taps(r.cnx, r.cny, gx / P, gy / P);
         const double g1 = f.channels == 1 ? (aligned ? f.grid[pix] : g_taps.apply(f.grid, 1, 0)) : 0.0;
         for (int k = 0; k < 3; ++k) {
           const double g = f.channels == 1 ? f.grid_scale[k] * g1

@@ -66,9 +66,8 @@ struct SpecimenResponse {
   double grid_um = 1.0;  // the grid's spacing (um_per_px; a preview's grid is coarser)
   double frame_stage_rad = 0.0;
   ResponseCoverage coverage = ResponseCoverage::Field;
-  // Chroma subgrid: node (I, J) at grid point (I·P + o, J·P + o), P = chroma_period, o = origin.
+  // Chroma subgrid: node (I, J) at grid point (I·P, J·P), P = chroma_period.
   int chroma_period = 4, cnx = 0, cny = 0;
-  int chroma_origin = 0;
   SpectralBands bands;            // count() = 1 when monochromatic
   Illuminant illuminant = Illuminant::D65;
   double single_wavelength_nm = 0.0;  // > 0: monochromatic (the grey of relative intensity)
