@@ -89,7 +89,15 @@ TEST(UiScript, ShortcutKeysDriveTheInstrument) {
 TEST(UiScript, BadInputRaisesTheBannerAndKeepsTheLastGoodScene) {
   auto d = driver();
   ASSERT_TRUE(d);
-  ASSERT_TRUE(run(*d, "set stage_deg=20\nset sample.thickness_um=-5\nexpect-error\nwait 2\n").ok);
+  testing::internal::CaptureStderr();
+  const bool ok = run(*d, "set stage_deg=20\nset sample.thickness_um=-5\nexpect-error\nwait 2\n").ok;
+  const std::string said = testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(ok);
+  // An error provoked on purpose is one calm line, not reported as a failure.
+  const auto calm = said.find("pmsim: expected error (test line 2): key 'sample.thickness_um'");
+  EXPECT_NE(calm, std::string::npos) << said;
+  EXPECT_EQ(said.find("expected error", calm + 1), std::string::npos) << said;
+  EXPECT_EQ(said.find("command line"), std::string::npos) << said;
   EXPECT_DOUBLE_EQ(d->app().scene().stage_deg, 20.0);
   EXPECT_DOUBLE_EQ(d->app().scene().sample.thickness_um, 30.0);
   EXPECT_NE(d->app().error().find("sample.thickness_um"), std::string::npos) << d->app().error();

@@ -147,7 +147,12 @@ void App::fail(const std::string& message) {
   const std::string prefix = "command line: ";
   error_ = message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
   ++counters_.failures;
-  std::fprintf(stderr, "pmsim: %s\n", message.c_str());
+  if (expected_error_.empty()) {
+    std::fprintf(stderr, "pmsim: %s\n", message.c_str());
+  } else if (!expected_error_said_) {
+    std::fprintf(stderr, "pmsim: expected error (%s): %s\n", expected_error_.c_str(), error_.c_str());
+    expected_error_said_ = true;
+  }
 }
 
 void App::note(const std::string& message) { notice_ = message; }

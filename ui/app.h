@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/microscope/grain_report.h"
@@ -82,6 +83,13 @@ class App {
   bool wait_rendered(double timeout_s) const;            // blocks (drivers/tests only, never in frame())
   const std::string& error() const { return error_; }
   void clear_error() { error_.clear(); }
+  // A script that provokes an error on purpose (`expect-error`) names where, e.g. "tour line 57":
+  // until cleared with "", errors still raise the banner, but stderr gets one line saying the
+  // error was expected instead of what reads as a failure.
+  void expect_error(std::string where) {
+    expected_error_ = std::move(where);
+    expected_error_said_ = false;
+  }
   const Layout& layout() const { return layout_; }
   const AppCounters& counters() const { return counters_; }
   bool help_open() const { return help_open_; }
@@ -124,6 +132,8 @@ class App {
   AppCounters counters_;
 
   std::string error_;   // banner text; "" = no banner
+  std::string expected_error_;  // where a script expects the next error; "" = none expected
+  bool expected_error_said_ = false;
   std::string notice_;  // last success message (exports, saves)
   bool help_open_ = false;
   bool reticle_ = true;

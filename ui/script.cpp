@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -118,11 +119,19 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
       ++result.frames;
     }
   };
+  // However the script ends, later errors (the user's own) must print as failures again.
+  struct ClearExpectation {
+    App& app;
+    ~ClearExpectation() { app.expect_error(""); }
+  } clear_expectation{app};
+  const std::string script_name = std::filesystem::path(file).stem().string();
   for (size_t i = 0; i < commands.size(); ++i) {
     const ScriptCommand& c = commands[i];
     const auto& a = c.args;
     auto num = [&](size_t k) { return number(c, k, file); };
     const auto failures_before = app.counters().failures;
+    const bool expected = i + 1 < commands.size() && commands[i + 1].verb == "expect-error";
+    app.expect_error(expected ? script_name + " line " + std::to_string(c.line) : "");
     if (c.verb == "set") {
       app.set(a[0]);
       step(1);
@@ -223,7 +232,6 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
       continue;  // checked with the command before it
     }
     const bool failed = app.counters().failures != failures_before;
-    const bool expected = i + 1 < commands.size() && commands[i + 1].verb == "expect-error";
     if (failed != expected) {
       result.ok = false;
       result.error = file + ": line " + std::to_string(c.line) + ": " +
