@@ -96,7 +96,7 @@ TEST(UiScript, BadInputRaisesTheBannerAndKeepsTheLastGoodScene) {
   // An error provoked on purpose is one calm line, not reported as a failure.
   const auto calm = said.find("pmsim: expected error (test line 2): key 'sample.thickness_um'");
   EXPECT_NE(calm, std::string::npos) << said;
-  EXPECT_EQ(said.find("expected error", calm + 1), std::string::npos) << said;
+  EXPECT_EQ(said.find("pmsim: expected error", calm + 1), std::string::npos) << said;
   EXPECT_EQ(said.find("command line"), std::string::npos) << said;
   EXPECT_DOUBLE_EQ(d->app().scene().stage_deg, 20.0);
   EXPECT_DOUBLE_EQ(d->app().scene().sample.thickness_um, 30.0);
