@@ -31,7 +31,7 @@ for t in "${targets[@]}"; do
   artifacts="$build/artifacts/$t"
   rm -rf "$seeds"
   mkdir -p "$corpus" "$seeds" "$artifacts"
-  PMSIM_FUZZ_MAKE_SEEDS="$seeds" "$build/tests/fuzz/fuzz_$t"
+  PMSIM_FUZZ_MAKE_SEEDS="$seeds" "$build/fuzz/fuzz_$t"
   regressions="$root/tests/fuzz/regressions/$t"
   mkdir -p "$regressions"
   # Past findings seed the run too, except open ones (DISABLED_*: they would stop the run at
@@ -73,7 +73,7 @@ for t in "${targets[@]}"; do
   fi
   [ -n "${PMSIM_FUZZ_RUNS:-}" ] && seed_opt+=(-runs="$PMSIM_FUZZ_RUNS")
   mkdir -p "$PMSIM_FUZZ_SCRATCH"
-  "${launcher[@]}" "$build/tests/fuzz/fuzz_$t" "$corpus" -seed_inputs=@"$build/seed_list_$t.txt" "${seed_opt[@]}" \
+  "${launcher[@]}" "$build/fuzz/fuzz_$t" "$corpus" -seed_inputs=@"$build/seed_list_$t.txt" "${seed_opt[@]}" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
     -artifact_prefix="$artifacts/" -print_final_stats=1 -close_fd_mask=1 2>"$build/fuzz_$t.log"
   rc=$?

@@ -4,8 +4,9 @@
 
 namespace pmsim {
 
-// $PMSIM_ASSETS when set and non-empty (an installed copy, a test's scratch folder), else the
-// source tree's assets folder compiled in as PMSIM_ASSET_DIR.
+// $PMSIM_ASSETS when set and non-empty (another copy, a test's scratch folder), else
+// <prefix>/share/pmsim beside the running program (core/base/install_layout.h): the installed
+// assets, or in a build tree the link to the source's assets/.
 std::string asset_dir();
 
 }  // namespace pmsim

@@ -6,6 +6,8 @@
 
 #include <dlfcn.h>
 
+#include "core/base/install_layout.h"
+
 namespace pmsim {
 
 const ImageCodec& oiio_codec() {
@@ -14,7 +16,9 @@ const ImageCodec& oiio_codec() {
   std::lock_guard<std::mutex> lock(mutex);
   if (codec) return *codec;
   const char* env = std::getenv("PMSIM_OIIO_PLUGIN");
-  const std::string path = env && *env ? env : PMSIM_OIIO_PLUGIN_PATH;
+  // Beside the program (core/base/install_layout.h): <prefix>/lib/pmsim/modules, installed or built.
+  const std::string path =
+      env && *env ? env : (install_prefix() / "lib" / "pmsim" / "modules" / "libpmsim_oiio.so").string();
   // RTLD_LOCAL: OpenImageIO's symbols stay out of the global namespace; RTLD_NOW: a broken module
   // fails here, with its reason, not at the first call into it. Never closed (codec is static).
   void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

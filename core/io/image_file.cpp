@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/base/version.h"
 #include "core/io/atomic_file.h"
 #include "core/io/checked_write.h"
 #include "core/io/image_codec.h"
@@ -25,7 +26,7 @@ std::string lower_extension(const std::string& path) {
 // PNG through libpng (no OpenImageIO for the common case: see core/io/image_codec.h), with the
 // text chunks OpenImageIO wrote: "pmsim:scene" and ImageDescription hold the scene JSON.
 std::vector<std::pair<std::string, std::string>> png_text(const nlohmann::json& metadata) {
-  std::vector<std::pair<std::string, std::string>> text = {{"Software", "pmsim"}};
+  std::vector<std::pair<std::string, std::string>> text = {{"Software", pmsim_software_name()}};
   if (!metadata.is_null()) {
     text.emplace_back("pmsim:scene", metadata.dump());
     text.emplace_back("ImageDescription", metadata.dump());

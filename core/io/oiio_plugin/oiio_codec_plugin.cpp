@@ -14,7 +14,7 @@ namespace pmsim {
 namespace {
 
 void add_metadata(OIIO::ImageSpec& spec, const std::string& metadata_json) {
-  spec.attribute("Software", "pmsim");
+  spec.attribute("Software", "pmsim " PMSIM_VERSION);  // the module links no pmsim library
   if (metadata_json.empty()) return;
   // "pmsim:scene" survives in EXR and PNG text chunks; TIFF keeps only its standard tags, so the
   // same JSON also goes into the ImageDescription tag.
