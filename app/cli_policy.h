@@ -1,10 +1,12 @@
 #pragma once
 // The command-line policy of every pmsim executable (pmsim, pmsim-render, pmsim-trace,
-// pmsim-bench, pmsim-experiments), all parsed with CLI11: --help / -h prints the usage on stdout
-// and exits 0; a usage error prints "<program>: <what is wrong>" and a pointer to --help on
+// pmsim-bench, pmsim-experiments, pmsim-ebsd-example), all parsed with CLI11: --help / -h prints
+// the usage on stdout and exits 0; --version prints the version and exits 0; a usage error prints "<program>: <what is wrong>" and a pointer to --help on
 // stderr and exits 2, the exit code of every bad input (scene, lens, key or value) in pmsim.
 // Header-only so that both the app/ executables and the ui library (ui/cli.cpp) share it.
 #include <CLI/CLI.hpp>
+
+#include "core/base/version.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -26,9 +28,15 @@ inline constexpr int kUsageErrorExitCode = 2;
 
 // Parses argv with `app` (whose name is the program's); returns only when the command line is
 // well-formed, else prints the help (exit 0) or the usage error (exit 2).
+// --version prints "<program> <version>" (the CMake project version) on stdout and exits 0.
 inline void parse_or_exit(CLI::App& app, int argc, char** argv) {
+  app.set_version_flag("--version", app.get_name() + " " + pmsim_version(),
+                       "print the program's name and pmsim's version, then exit");
   try {
     app.parse(argc, argv);
+  } catch (const CLI::CallForVersion& e) {
+    std::cout << e.what() << "\n";
+    std::exit(0);
   } catch (const CLI::CallForHelp&) {
     std::cout << app.help();
     std::exit(0);

@@ -104,6 +104,7 @@ class App {
   void draw_sample_tab(Scene& edit, bool& changed);
   void draw_quality_tab(Scene& edit, bool& changed);
   void draw_files_tab();
+  void draw_about_tab();
   void draw_field(Scene& edit, bool& changed);
   void draw_status();
   void draw_scale_bar(ImDrawList* draw) const;

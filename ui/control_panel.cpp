@@ -13,6 +13,7 @@
 #include "core/microscope/view_geometry.h"
 #include "core/render/exposure.h"
 #include "core/specimen/grain_mount_render.h"
+#include "ui/about.h"
 #include "ui/app.h"
 #include "ui/asset_lists.h"
 
@@ -113,6 +114,10 @@ void App::draw_controls(Scene& edit, bool& changed) {
     }
     if (ImGui::BeginTabItem("Files")) {
       draw_files_tab();
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("About")) {
+      draw_about_tab();
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();
@@ -426,6 +431,10 @@ void App::draw_files_tab() {
   if (ImGui::Button("Save window")) request_window_screenshot(window_path_);
   if (!notice_.empty()) ImGui::TextWrapped("%s", notice_.c_str());
   ImGui::PopItemWidth();
+}
+
+void App::draw_about_tab() {
+  for (const std::string& line : about_lines()) ImGui::TextWrapped("%s", line.c_str());
 }
 
 }  // namespace pmsim::ui

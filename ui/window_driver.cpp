@@ -1,11 +1,13 @@
 #include "ui/window_driver.h"
 
 #include <cstring>
+#include <string>
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <imgui.h>
 
+#include "core/base/version.h"
 #include "ui/gl_functions.h"
 
 namespace pmsim::ui {
@@ -31,7 +33,8 @@ std::unique_ptr<WindowDriver> WindowDriver::create(const Scene& scene, int width
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  d->window_ = glfwCreateWindow(width, height, "pmsim - polarizing microscope", nullptr, nullptr);
+  d->window_ = glfwCreateWindow(width, height, ("pmsim " + pmsim_version() + " - polarizing microscope").c_str(),
+                               nullptr, nullptr);
   if (!d->window_) {
     log += "GLFW: cannot open a window with OpenGL 3.3 core: " + glfw_error() + "\n";
     return nullptr;
