@@ -11,6 +11,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 t0=$(date +%s)
+bash "$root/scripts/setup.sh" test
 bash "$root/scripts/build.sh"
 (cd "$root/build" && xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j "$(nproc)")
 t1=$(date +%s)
