@@ -3,6 +3,7 @@
 // Renders the bench scenes with every strategy, measures wall time and per-pixel CIEDE2000
 // against cached converged references, prints the table and the issue-5 targets, and writes JSON
 // rows, docs-ready markdown (frontier.md) and the frontier plot (frontier.png) into --out-dir.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -14,17 +15,24 @@
 #include "core/bench/frontier_plot.h"
 #include "core/io/atomic_file.h"
 #include "core/base/input_error.h"
+#include "core/base/install_layout.h"
 
 namespace {
 
 constexpr const char* kProgram = "pmsim-bench";
 
-// <build>/bench-cache next to the app folder of this executable.
+// In a build tree (CMakeCache.txt beside app/): <build>/bench-cache, as the tests expect. Installed
+// (/usr/bin is not writable): $XDG_CACHE_HOME/pmsim/bench-cache, else ~/.cache/pmsim/bench-cache.
 std::string default_cache_dir() {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) return "bench-cache";
-  return (exe.parent_path().parent_path() / "bench-cache").string();
+  const fs::path prefix = pmsim::install_prefix();
+  if (fs::exists(prefix / "CMakeCache.txt", ec)) return (prefix / "bench-cache").string();
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/')
+    return (fs::path(xdg) / "pmsim" / "bench-cache").string();
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return (fs::path(home) / ".cache" / "pmsim" / "bench-cache").string();
+  return "bench-cache";
 }
 
 int parse_int(const std::string& flag, const char* v) {
@@ -55,9 +63,11 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "write frontier.md and frontier.png there")->type_name("DIR");
   app.add_option("--size", size, "image side in pixels, 8..4096 (default 512, quick 96)")->type_name("N");
   app.add_option("--threads", threads, "worker threads (0: all cores)")->type_name("N");
-  app.add_option("--cache-dir", opt.cache_dir, "folder of the cached references")
-      ->type_name("DIR")
-      ->capture_default_str();
+  // The default is not printed: it depends on where the program runs, and --help becomes the man page.
+  app.add_option("--cache-dir", opt.cache_dir,
+                 "folder of the cached references (default: <build>/bench-cache in a build tree, "
+                 "else $XDG_CACHE_HOME/pmsim/bench-cache or ~/.cache/pmsim/bench-cache)")
+      ->type_name("DIR");
   app.add_flag("--no-throughput", no_throughput, "skip the ray-throughput measurement");
   app.add_option("--scene", opt.scene_filter, "only the scenes whose name contains it")->type_name("SUBSTR");
   app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")

@@ -58,5 +58,9 @@ desktop-file-validate "$scratch/root/usr/share/applications/pmsim.desktop" || fa
 # The programs, the module, the assets, man pages and desktop entry. share/doc is left out: its
 # docs/experiments files are records of runs on a developer's checkout and name the scene they read.
 leaks="$(grep -rlaF -e "$src" -e "$build" --exclude-dir=doc "$scratch/root" || true)"
+# Compressed files (man pages, changelog) are searched inside.
+while IFS= read -r -d '' gz; do
+  if zcat "$gz" | grep -qaF -e "$src" -e "$build"; then leaks+="$gz"$'\n'; fi
+done < <(find "$scratch/root" -path "$scratch/root/usr/share/doc" -prune -o -name '*.gz' -print0)
 [ -z "$leaks" ] || fail "installed files name the source or build tree ($src, $build):"$'\n'"$leaks"
 echo "install_package_test: $deb installs and runs from $scratch/root; no tree path leaks"
