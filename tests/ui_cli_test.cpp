@@ -9,8 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include "core/base/asset_locator.h"
+#include "core/base/version.h"
 #include "core/io/image_file.h"
+#include "ui/about.h"
 
 namespace {
 
@@ -48,6 +52,25 @@ class UiCli : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(kOut); }
 };
+
+// The About tab's version is the CMake project version (read back from this build's cache, the one
+// place it is set) and it names the data folder the app is really using.
+TEST(UiAbout, ShowsTheProjectVersionAndTheAssetFolderInUse) {
+  std::ifstream cache(std::string(PMSIM_BINARY_DIR) + "/CMakeCache.txt");
+  std::string line, project_version;
+  const std::string key = "CMAKE_PROJECT_VERSION:STATIC=";
+  while (std::getline(cache, line))
+    if (line.rfind(key, 0) == 0) project_version = line.substr(key.size());
+  ASSERT_FALSE(project_version.empty());
+  EXPECT_EQ(pmsim::pmsim_version(), project_version);
+  const std::vector<std::string> lines = pmsim::ui::about_lines();
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines[0], "pmsim " + project_version);
+  bool names_assets = false;
+  for (const auto& l : lines) names_assets |= l.find(pmsim::asset_dir()) != std::string::npos;
+  EXPECT_TRUE(names_assets);
+  EXPECT_TRUE(std::filesystem::is_directory(pmsim::asset_dir() + "/materials")) << pmsim::asset_dir();
+}
 
 TEST_F(UiCli, HeadlessScreenshotIsTheWholeWindowWithTheSceneInItsMetadata) {
   const std::string png = kOut + "/shot.png";
