@@ -2,13 +2,18 @@
 
 #include <chrono>
 
+#include <tbb/task_arena.h>
+
 #include "core/microscope/scene_check.h"
 #include "core/specimen/traced_specimen.h"
 
 namespace pmsim::ui {
 
 RenderFeed::RenderFeed(int renderer_threads)
-    : renderer_(renderer_threads), thread_([this] { run(); }), composer_([this] { compose_loop(); }) {}
+    : threads_(renderer_threads),
+      renderer_(renderer_threads),
+      thread_([this] { run(); }),
+      composer_([this] { compose_loop(); }) {}
 
 RenderFeed::~RenderFeed() {
   {
@@ -33,9 +38,10 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
       grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
       submitted_id_ = applied_id_ = id;
       // A drag submits every frame: the tracer waits until 150 ms after the last change.
-      hold_until_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                               (std::chrono::steady_clock::now() + std::chrono::milliseconds(150)).time_since_epoch())
-                               .count());
+      hold_until_ns_.store(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(
+              (std::chrono::steady_clock::now() + std::chrono::milliseconds(150)).time_since_epoch())
+              .count());
       cv_.notify_all();
       return;
     }
@@ -115,18 +121,25 @@ void RenderFeed::run() {
 
 void RenderFeed::render_grains(const Scene& scene, std::uint64_t) {
   try {
-    render_traced_response(
-        scene, ResponseCoverage::Disc,
-        [&](const ResponseProgress& p) {
-          std::lock_guard<std::mutex> lock(mu_);
-          response_latest_ = p;
-          ++response_version_;
-          cv_.notify_all();
-        },
-        &grain_cancel_, [this] {
-          return std::chrono::steady_clock::now().time_since_epoch().count() <
-                 std::chrono::steady_clock::duration(std::chrono::nanoseconds(hold_until_ns_.load())).count();
-        });
+    // In an arena of the app's --threads, as the progressive renderer's (the traced response is
+    // otherwise free to take every core).
+    tbb::task_arena arena(threads_ > 0 ? threads_ : static_cast<int>(tbb::task_arena::automatic));
+    arena.execute([&] {
+      render_traced_response(
+          scene, ResponseCoverage::Disc,
+          [&](const ResponseProgress& p) {
+            std::lock_guard<std::mutex> lock(mu_);
+            response_latest_ = p;
+            ++response_version_;
+            cv_.notify_all();
+          },
+          &grain_cancel_,
+          [this] {
+            return std::chrono::steady_clock::now().time_since_epoch().count() <
+                   std::chrono::steady_clock::duration(std::chrono::nanoseconds(hold_until_ns_.load()))
+                       .count();
+          });
+    });
   } catch (const std::exception& e) {
     // Passed the scene check but the mount could not be built (e.g. an unknown mineral name):
     // reported like a refused scene.
@@ -139,8 +152,9 @@ void RenderFeed::compose_loop() {
   std::unique_lock<std::mutex> lock(mu_);
   for (;;) {
     cv_.wait(lock, [&] {
-      return quit_ || (grains_mode_ && response_latest_.response &&
-                       (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
+      return quit_ ||
+             (grains_mode_ && response_latest_.response &&
+              (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
     });
     if (quit_) return;
     const ResponseProgress progress = response_latest_;  // shares the immutable response
@@ -168,9 +182,9 @@ bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
   {
     std::lock_guard<std::mutex> lock(mu_);
     if (grains_mode_) {
-      const bool changed = composed_.width > 0 && (out.generation != composed_.generation ||
-                                                   out.passes != composed_.passes || out.width != composed_.width ||
-                                                   out.stopped != composed_.stopped);
+      const bool changed =
+          composed_.width > 0 && (out.generation != composed_.generation || out.passes != composed_.passes ||
+                                  out.width != composed_.width || out.stopped != composed_.stopped);
       if (changed) out = composed_;
       current = !busy_ && !pending_ && applied_id_ == submitted_id_ && out.generation == grain_generation_;
       return changed;

@@ -58,6 +58,8 @@ class RenderFeed {
   void compose_loop();  // the composer thread
   void render_grains(const Scene& scene, std::uint64_t generation);  // on the feeder thread, unlocked
 
+  // Worker threads of both renderers (the app's --threads; 0: all cores).
+  const int threads_;
   ProgressiveRenderer renderer_;
   mutable std::mutex mu_;
   mutable std::condition_variable cv_;
