@@ -4,7 +4,8 @@
 // Renders a microscope scene to convergence (or to render.spp / render.wavelengths), or a 3-D
 // scene ("type": "scene3d", core/scene3d), and writes the image atomically. A thin section's
 // ground truth goes with it: --labels the grain under every pixel centre (16-bit grey PNG,
-// core/microscope/grain_labels.h), --grains the grains in the image (core/io/grain_report_file.h).
+// core/microscope/grain_labels.h), --grains the grains in the image (core/io/grain_report_file.h);
+// a grain mount's likewise, its fragments (core/specimen/grain_mount_truth.h).
 // --sweep renders one frame per value of an instrument key (stage_deg, polarizer_deg,
 // analyzer_deg, compensator_position) into the numbered files of --out (one printf integer
 // field); a traced specimen's response is traced once and composed at every value
@@ -47,8 +48,10 @@
 #include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
 #include "core/scene3d/scene3d_render.h"
+#include "core/specimen/becke_probe.h"
 #include "core/specimen/forward_response.h"
 #include "core/specimen/grain_mount_render.h"
+#include "core/specimen/grain_mount_truth.h"
 #include "core/specimen/specimen_response.h"
 #include "core/specimen/traced_specimen.h"
 
@@ -77,12 +80,13 @@ Args parse_args(int argc, char** argv) {
   app.add_option("-o,--out", a.out, "output image (.png, .exr or .tif)")->type_name("FILE")->required();
   app.add_option("--stats", a.stats, "write the render statistics as JSON")->type_name("FILE.json");
   app.add_option("--labels", a.labels,
-                 "thin sections: write the grain under every pixel centre as a 16-bit grey PNG "
-                 "(0 = mounting medium or slide, k = grain k)")
+                 "thin sections and grain mounts: write the grain (fragment) under every pixel centre "
+                 "as a 16-bit grey PNG (0 = mounting medium, liquid or slide, k = grain k)")
       ->type_name("FILE.png");
   app.add_option("--grains", a.grains,
                  "thin sections: write the grains in the image (mineral, orientation, area, cleavage "
-                 "traces, extinction, retardation, twin) as JSON")
+                 "traces, extinction, retardation, twin) as JSON; grain mounts: the fragments (mineral, "
+                 "optic axes, area, n' along the polarizer, n fast and slow, relief against the liquid)")
       ->type_name("FILE.json");
   app.add_flag("--scale-bar", a.scale_bar,
                "orthoscopic microscope views: burn a scale bar (section millimetres) into the image, "
@@ -560,7 +564,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint16_t> labels;
   std::shared_ptr<const pmsim::SectionMap> section;
   std::optional<pmsim::Scene> microscope_scene;
-  nlohmann::json meta, stats;
+  nlohmann::json meta, stats, mount_report;
   try {
     std::vector<std::string> warnings;
     const std::string path =
@@ -602,12 +606,14 @@ int main(int argc, char** argv) {
       // render.native=on on an EBSD map: one pixel per point (checked like any --set size).
       scene = pmsim::native_resolution_scene(scene);
       if (scene.render.native) pmsim::validate_scene(scene, path);
-      if (ground_truth && !(scene.sample_in && scene.sample.type == pmsim::SampleType::Section)) {
+      const bool grain_mount = scene.sample_in && scene.sample.type == pmsim::SampleType::Grains;
+      if (ground_truth && !(scene.sample_in && (scene.sample.type == pmsim::SampleType::Section || grain_mount))) {
         const nlohmann::json saved = pmsim::scene_to_json(scene);
         throw pmsim::InputError(path, scene.sample_in ? "sample.type" : "sample.present",
                                 scene.sample_in ? saved["sample"]["type"].get<std::string>() : "false",
                                 std::string(ground_truth_flag) +
-                                    " needs a thin section on the stage (sample.type=section)");
+                                    " needs a thin section or a grain mount on the stage "
+                                    "(sample.type=section or grains)");
       }
       // The bar measures the specimen plane: only the orthoscopic image (without the Bertrand
       // lens) is one; a conoscopic image shows directions, not lengths.
@@ -631,7 +637,12 @@ int main(int argc, char** argv) {
       height = img.height;
       rgb = output_pixels(scene, std::move(img.rgb), width, height, args.out, args.scale_bar);
       meta = pmsim::scene_to_json(scene);
-      if (ground_truth) {
+      if (ground_truth && grain_mount) {
+        const std::shared_ptr<const pmsim::SpecimenScene> mount = pmsim::grain_mount_specimen_cached(scene);
+        labels = pmsim::fragment_label_image(*mount, scene);
+        mount_report = pmsim::grain_mount_report_json(scene, pmsim::fragment_truths(*mount, scene, labels),
+                                                      mount->liquid().n(pmsim::kBeckeWavelengthNm));
+      } else if (ground_truth) {
         section = pmsim::load_scene_section(scene);
         labels = pmsim::grain_label_image(scene, *section);
         microscope_scene = scene;
@@ -655,7 +666,9 @@ int main(int argc, char** argv) {
   try {
     // The ground truth first, each file atomic (every folder was checked before rendering).
     if (!args.labels.empty()) pmsim::write_gray16_png(args.labels, width, height, labels, meta);
-    if (!args.grains.empty())
+    if (!args.grains.empty() && !mount_report.is_null())
+      pmsim::write_text_atomically(args.grains, mount_report.dump(2) + "\n");
+    else if (!args.grains.empty())
       pmsim::write_grain_report_file(args.grains, *microscope_scene, *section,
                                      pmsim::report_grains(*microscope_scene, *section, labels));
     pmsim::write_image(args.out, width, height, rgb, meta);

@@ -7,10 +7,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "core/base/input_error.h"
 #include "core/io/image_file.h"
@@ -104,4 +108,33 @@ TEST(GrainMountKeys, SurviveSaveAndLoad) {
   // Unset, the liquid index is not written (a saved scene of before issue 12 reads back the same).
   const nlohmann::json j = scene_to_json(Scene{});
   EXPECT_FALSE(j["sample"].contains("medium_index"));
+}
+
+// --labels and --grains on a grain mount (issue 23): the fragment under every pixel, and the file
+// lists exactly the fragments the labels show, with their areas; a section-only scene key is not
+// needed. The physics of the numbers: tests/specimen_grain_mount_truth_test.cpp.
+TEST(GrainMountCli, LabelsAndGrainsNameTheFragmentsInTheImage) {
+  ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " not built";
+  const std::string dir = temp_dir();
+  const CliRun r = run("--set sample.type=grains --set sample.mineral=calcite --set sample.medium_index=1.54" + kSmall +
+                       "--out " + dir + "/g.png --labels " + dir + "/l.png --grains " + dir + "/g.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const LoadedImage img = read_image(dir + "/l.png");
+  ASSERT_EQ(img.channels, 1);
+  std::map<int, long long> counts;
+  for (float v : img.pixels)
+    if (const int l = int(std::lround(v * 65535.0f)); l != 0) ++counts[l];
+  std::ifstream in(dir + "/g.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["sample"], "grains");
+  EXPECT_DOUBLE_EQ(j["liquid_n_d"].get<double>(), 1.54);
+  std::map<int, long long> listed;
+  for (const auto& g : j["grains"]) {
+    listed[g["id"].get<int>()] = g["area_px"].get<long long>();
+    EXPECT_EQ(g["mineral"], "calcite");
+    EXPECT_TRUE(g["relief_vs_medium"] == "higher" || g["relief_vs_medium"] == "lower" ||
+                g["relief_vs_medium"] == "matched");
+  }
+  EXPECT_FALSE(listed.empty());
+  EXPECT_EQ(listed, counts);
 }
