@@ -97,8 +97,9 @@ std::string key_chord_name(int key, bool shift, bool ctrl) {
   for (const auto& [n, code] : named_keys())
     if (code == key) name = n;
   if (name.empty()) name = std::string(1, static_cast<char>(key));
-  if (key == GLFW_KEY_COMMA) name = ",";
-  if (key == GLFW_KEY_PERIOD) name = ".";
+  // assign(1, c), not = ",": GCC 12 warns falsely (-Wrestrict) on assigning a short literal.
+  if (key == GLFW_KEY_COMMA) name.assign(1, ',');
+  if (key == GLFW_KEY_PERIOD) name.assign(1, '.');
   return std::string(ctrl ? "Ctrl+" : "") + (shift ? "Shift+" : "") + name;
 }
 

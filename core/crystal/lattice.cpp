@@ -186,7 +186,10 @@ std::string joined(std::array<int, 3> v) {
 }
 }  // namespace
 
-std::string miller_text(MillerIndices p) { return "(" + joined({p.h, p.k, p.l}) + ")"; }
-std::string direction_text(LatticeDirection d) { return "[" + joined({d.u, d.v, d.w}) + "]"; }
+// Appended rather than "(" + …: GCC 12 warns falsely (-Wrestrict) on a literal + std::string.
+std::string miller_text(MillerIndices p) { return std::string(1, '(').append(joined({p.h, p.k, p.l})).append(1, ')'); }
+std::string direction_text(LatticeDirection d) {
+  return std::string(1, '[').append(joined({d.u, d.v, d.w})).append(1, ']');
+}
 
 }  // namespace pmsim

@@ -18,8 +18,10 @@ namespace {
 std::string temporary_path_for(const std::string& path) {
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path p(path);
-  const std::string tmp_name = "." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                               std::to_string(counter++) + p.extension().string();
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + std::string.
+  std::string tmp_name(1, '.');
+  tmp_name.append(p.stem().string()).append(".tmp").append(std::to_string(::getpid())).append(1, '_');
+  tmp_name.append(std::to_string(counter++)).append(p.extension().string());
   return (p.parent_path() / tmp_name).string();
 }
 }  // namespace
