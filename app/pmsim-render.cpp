@@ -422,12 +422,12 @@ nlohmann::json image_stats(const pmsim::RenderImage& img) {
           {"model_report", img.model_report}};
 }
 
-// One image's pixels as written: exposure for 8-bit PNG, then the scale bar.
+// One image's pixels as written: exposure and colour vision for 8-bit PNG, then the scale bar.
 std::vector<float> output_pixels(const pmsim::Scene& scene, std::vector<float> rgb, int width, int height,
                                  const std::string& out, bool scale_bar) {
-  // render.exposure_ev scales the 8-bit PNG only (before the scale bar, which stays white);
-  // EXR and TIFF are linear floats and carry the key in their scene metadata.
-  if (ends_with_ci(out, ".png")) rgb = pmsim::exposed(rgb, scene.render.exposure_ev);
+  // render.exposure_ev and render.vision change the 8-bit PNG only (before the scale bar, which
+  // stays white); EXR and TIFF are linear floats and carry the keys in their scene metadata.
+  if (ends_with_ci(out, ".png")) rgb = pmsim::displayed(rgb, scene.render.exposure_ev, scene.render.vision);
   if (scale_bar)
     pmsim::burn_scale_bar(rgb, width, height,
                           pmsim::choose_scale_bar(pmsim::mm_per_pixel(scene, width, height), width));

@@ -3,10 +3,14 @@
 // out-of-range value exits 2 naming key and value, and writes nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include <glm/glm.hpp>
+
 #include "core/io/image_file.h"
+#include "core/spectrum/colour_vision.h"
 #include "render_cli_run.h"
 
 namespace fs = std::filesystem;
@@ -76,4 +80,43 @@ TEST(ExposureCli, OutOfRangeExitsTwoNamingKeyAndValue) {
     EXPECT_NE(r.err.find(v == "nan" ? "n" : v), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << v;
   }
+}
+
+// render.vision: the PNG is Φ (core/spectrum/colour_vision.h) applied to the linear image before
+// the encoding — checked pixel by pixel on a coloured plate against the normal-vision PNG, within
+// two 8-bit levels' worth of linear error (each PNG is quantized once: ≤ 1.3 % of a value above
+// 0.04, plus 0.002 absolute near black); a bad name exits 2 naming key and value.
+TEST(ExposureCli, VisionPngIsTheMachadoMatrixOfTheNormalOne) {
+  ASSERT_TRUE(fs::exists(test::kRenderBinary)) << test::kRenderBinary << " not built";
+  // Quartz 40 µm, optic axis at 45° to the polars: first-order yellow (Γ ≈ 360 nm), one stop
+  // down so that no channel of the normal PNG clips (Φ mixes channels: a clipped one would not
+  // be Φ of the image).
+  const std::string plate = " --set sample.type=plate --set sample.mineral=quartz --set sample.thickness_um=40"
+                            " --set sample.optic_axis=[0.70710678,0.70710678,0] --set render.exposure_ev=-1"
+                            " --set render.width=16 --set render.height=16 ";
+  const std::string normal = temp_dir() + "/normal.png", deutan = temp_dir() + "/deutan.png";
+  ASSERT_EQ(run(plate + "--out " + normal).code, 0);
+  const test::CliRun r = run(plate + "--set render.vision=deuteranopia --out " + deutan);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const LoadedImage a = read_image(normal), b = read_image(deutan);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(b.metadata["pmsim:scene"]["render"]["vision"], "deuteranopia");
+  const glm::dmat3 phi = colour_vision_matrix(ColourVision::Deuteranopia);
+  double worst = 0.0, chroma = 0.0;
+  for (std::size_t i = 0; i + 2 < a.pixels.size(); i += 3) {
+    const glm::dvec3 lin(srgb_to_linear(a.pixels[i]), srgb_to_linear(a.pixels[i + 1]), srgb_to_linear(a.pixels[i + 2]));
+    const glm::dvec3 want = glm::clamp(phi * lin, 0.0, 1.0);
+    for (int c = 0; c < 3; ++c) {
+      const double got = srgb_to_linear(b.pixels[i + std::size_t(c)]);
+      worst = std::max(worst, std::abs(got - want[c]) / (0.026 * std::max(want[c], 0.04) + 0.002));
+    }
+    chroma = std::max(chroma, std::abs(lin.x - lin.y) + std::abs(lin.y - lin.z));
+  }
+  EXPECT_GT(chroma, 0.05) << "the plate must be coloured for the check to mean anything";
+  EXPECT_LE(worst, 1.0);
+  const test::CliRun bad = run(plate + "--set render.vision=colourblind --out " + temp_dir() + "/bad.png");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("render.vision"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("colourblind"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(temp_dir() + "/bad.png"));
 }

@@ -107,14 +107,18 @@ bool App::commit(const Scene& candidate) {
     ++counters_.rejected;
     return false;
   }
-  // The exposure alone changes how the image is encoded, not the image: no restart, a re-upload.
-  if (candidate.render.exposure_ev != scene_.render.exposure_ev) {
+  // The exposure and the colour vision change how the image is shown, not the image: no restart,
+  // a re-upload.
+  if (candidate.render.exposure_ev != scene_.render.exposure_ev || candidate.render.vision != scene_.render.vision) {
     Scene same = candidate;
     same.render.exposure_ev = scene_.render.exposure_ev;
+    same.render.vision = scene_.render.vision;
     if (scene_to_json(same) == scene_to_json(scene_)) {
       previous_scene_ = scene_;
       scene_ = candidate;
-      if (image_.width > 0) field_texture_.upload(image_.width, image_.height, image_.rgb, exposure_gain(scene_.render.exposure_ev));
+      if (image_.width > 0)
+        field_texture_.upload(image_.width, image_.height, image_.rgb,
+                              display_matrix(scene_.render.exposure_ev, scene_.render.vision));
       ++counters_.commits;
       error_.clear();
       return true;
@@ -211,9 +215,10 @@ bool App::export_field(const std::string& path) {
     const RenderImage& img = reframed ? native_image : image_;
     const Scene& shown = reframed ? native : scene_;
     make_parent_folder(path);
-    // The exposure as on screen, for an 8-bit export (PNG); EXR and TIFF stay linear.
+    // The exposure and colour vision as on screen, for an 8-bit export (PNG); EXR and TIFF stay linear.
     const bool eight_bit = std::filesystem::path(path).extension() == ".png";
-    std::vector<float> rgb = eight_bit ? exposed(img.rgb, shown.render.exposure_ev) : img.rgb;
+    std::vector<float> rgb =
+        eight_bit ? displayed(img.rgb, shown.render.exposure_ev, shown.render.vision) : img.rgb;
     if (scale_bar_ && shown.mode == ViewMode::Ortho && !shown.bertrand_in)
       burn_scale_bar(rgb, img.width, img.height, choose_scale_bar(mm_per_pixel(shown, img.width, img.height), img.width));
     write_image(path, img.width, img.height, rgb, scene_to_json(shown));
@@ -255,7 +260,8 @@ void App::pull_snapshot() {
     feed_->submit(scene_, ++generation_);
   }
   if (feed_->snapshot(image_, image_current_)) {
-    field_texture_.upload(image_.width, image_.height, image_.rgb, exposure_gain(scene_.render.exposure_ev));
+    field_texture_.upload(image_.width, image_.height, image_.rgb,
+                          display_matrix(scene_.render.exposure_ev, scene_.render.vision));
     ++counters_.uploads;
   }
 }

@@ -371,6 +371,10 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   changed |= slider_double("Exposure", r.exposure_ev, kMinExposureEv, kMaxExposureEv, "%+.1f EV");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("stops: the field and PNG exports x 2^EV (e.g. -1 keeps a Becke line's excess light from clipping)");
+  changed |= combo_enum("Seen as", r.vision, {"normal vision", "protanopia", "deuteranopia", "tritanopia"});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("render.vision: the field and PNG exports as an observer with that colour-vision\n"
+                      "deficiency sees them (Machado, Oliveira & Fernandes 2009), for teachers");
   static const int kSizes[] = {128, 256, 384, 512, 768};
   if (ImGui::BeginCombo("Image size", (std::to_string(r.width) + " x " + std::to_string(r.height)).c_str())) {
     for (int s : kSizes)

@@ -37,14 +37,16 @@ void LinearTexture::release() {
   width_ = height_ = 0;
 }
 
-void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_linear, double gain) {
-  const float k = static_cast<float>(gain);
+void LinearTexture::upload(int width, int height, const std::vector<float>& rgb_linear, const glm::dmat3& display) {
   if (width <= 0 || height <= 0 || rgb_linear.size() < static_cast<size_t>(width) * height * 3) return;
   staging_.resize(static_cast<size_t>(width) * height * 4);
+  // Float rows of the display matrix: m[c][r] is row r, column c (glm is column-major).
+  float m[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = static_cast<float>(display[c][r]);
   for (size_t i = 0, n = static_cast<size_t>(width) * height; i < n; ++i) {
-    staging_[4 * i + 0] = encode(k * rgb_linear[3 * i + 0]);
-    staging_[4 * i + 1] = encode(k * rgb_linear[3 * i + 1]);
-    staging_[4 * i + 2] = encode(k * rgb_linear[3 * i + 2]);
+    const float* p = &rgb_linear[3 * i];
+    for (int r = 0; r < 3; ++r) staging_[4 * i + r] = encode(m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2]);
     staging_[4 * i + 3] = 255;
   }
   GlFunctions& g = gl();

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
+
 namespace pmsim::ui {
 
 class LinearTexture {
@@ -14,8 +16,9 @@ class LinearTexture {
   LinearTexture& operator=(const LinearTexture&) = delete;
 
   // rgb_linear: width*height*3 floats, top row first.
-  // `gain`: the exposure (render.exposure_ev as 2^ev) applied before the encoding.
-  void upload(int width, int height, const std::vector<float>& rgb_linear, double gain = 1.0);
+  // `display`: the exposure and colour vision (display_matrix, core/render/exposure.h) applied to
+  // linear RGB before the encoding.
+  void upload(int width, int height, const std::vector<float>& rgb_linear, const glm::dmat3& display = glm::dmat3(1.0));
   void release();  // deletes the GL texture (call while the context is current)
   bool valid() const { return id_ != 0 && width_ > 0; }
   void* imgui_id() const { return reinterpret_cast<void*>(static_cast<std::uintptr_t>(id_)); }

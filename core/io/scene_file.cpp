@@ -248,6 +248,15 @@ const std::vector<Key>& keys() {
        [](const Scene& s) -> json { return s.render.native ? json("on") : json(nullptr); }},
       {"render.exposure_ev", [](Scene& s, const json& v) { s.render.exposure_ev = as_number(v); },
        [](const Scene& s) -> json { return s.render.exposure_ev != 0.0 ? json(s.render.exposure_ev) : json(nullptr); }},
+      {"render.vision",
+       [](Scene& s, const json& v) {
+         if (!parse_colour_vision(as_string(v), s.render.vision))
+           throw BadValue{"expected normal, protanopia, deuteranopia or tritanopia"};
+       },
+       [](const Scene& s) -> json {
+         return s.render.vision != ColourVision::Normal ? json(std::string(colour_vision_name(s.render.vision)))
+                                                         : json(nullptr);
+       }},
       {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
        [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
       {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },

@@ -12,6 +12,7 @@
 
 #include "core/crystal/crystal_indices.h"  // CrystalIndices: sample.crystal
 #include "core/optics/interface_model.h"   // FresnelModel: optics.schlick
+#include "core/spectrum/colour_vision.h"
 #include "core/spectrum/illuminant.h"
 
 namespace pmsim {
@@ -110,6 +111,10 @@ struct RenderSettings {
   // render.exposure_ev: stops of exposure of 8-bit outputs (PNG, the app's field), image × 2^ev
   // before encoding (core/render/exposure.h); −10…10, 0 as rendered.
   double exposure_ev = 0.0;
+  // render.vision: normal|protanopia|deuteranopia|tritanopia. The 8-bit outputs and the app's
+  // field as an observer with that colour-vision deficiency sees them (core/spectrum/
+  // colour_vision.h); like the exposure, linear outputs stay the physical image.
+  ColourVision vision = ColourVision::Normal;
   bool operator==(const RenderSettings&) const = default;
 };
 

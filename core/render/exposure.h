@@ -5,6 +5,10 @@
 // scene in their metadata records the exposure for whoever encodes them.
 #include <vector>
 
+#include <glm/mat3x3.hpp>
+
+#include "core/spectrum/colour_vision.h"
+
 namespace pmsim {
 
 // The range scene_check accepts: ±10 stops (a factor of ~1000 either way) covers every image
@@ -15,5 +19,11 @@ constexpr double kMinExposureEv = -10.0, kMaxExposureEv = 10.0;
 double exposure_gain(double ev);
 // rgb_linear × 2^ev (a copy; the input untouched, it may be a shared render buffer).
 std::vector<float> exposed(const std::vector<float>& rgb_linear, double ev);
+
+// What an 8-bit output shows of a linear image: the exposure and the observer's colour vision
+// (render.vision, core/spectrum/colour_vision.h) as one matrix on linear sRGB, 2^ev · Φ.
+glm::dmat3 display_matrix(double ev, ColourVision vision);
+// rgb_linear through display_matrix (a copy), before the 8-bit encoding clips it.
+std::vector<float> displayed(const std::vector<float>& rgb_linear, double ev, ColourVision vision);
 
 }  // namespace pmsim

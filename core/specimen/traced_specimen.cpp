@@ -64,6 +64,7 @@ bool same_specimen_response(const Scene& rendered, const Scene& next) {
     s->compensator = Compensator::None;
     s->compensator_position = 0.0;
     s->render.exposure_ev = 0.0;
+    s->render.vision = ColourVision::Normal;
   }
   return a == b;
 }
