@@ -101,7 +101,7 @@ TEST(EbsdMapCli, MalformedOrTruncatedFileExitsTwoNamingFileLineAndField) {
   std::string bad = read_file(dir / "good.ctf");
   const auto at = bad.rfind("\n1\t");
   ASSERT_NE(at, std::string::npos);
-  bad.replace(at + 1, 1, "x");
+  bad[at + 1] = 'x';  // one character (replace(…, "x") trips GCC 12's false -Wrestrict)
   { std::ofstream(dir / "bad.ctf", std::ios::binary) << bad; }
   const CommandResult b = run_command(args(scene_file(dir, dir / "bad.ctf"), {"--out", dir / "a.png"}), dir);
   EXPECT_EQ(b.exit_code, 2) << b.err;

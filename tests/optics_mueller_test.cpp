@@ -60,7 +60,9 @@ TEST(OpticsMueller, RetarderTermsAreExact) {
         for (int k = 0; k < 4; ++k) {
           const std::size_t e = std::size_t(4 * i + k);
           EXPECT_NEAR(c[e], t.c0[e] + std::cos(delta) * t.c1[e] + std::sin(delta) * t.c2[e], 1e-13);
-          if (k < 3) EXPECT_NEAR(c[e], b[std::size_t(3 * i + k)], 1e-13);
+          if (k < 3) {
+            EXPECT_NEAR(c[e], b[std::size_t(3 * i + k)], 1e-13);
+          }
         }
     }
 }
