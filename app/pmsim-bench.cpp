@@ -1,3 +1,4 @@
+// pmsim-bench --apply-settings [--size N]: only the response's apply-settings timing (a frame's work).
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
 //             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR] [--from-json FILE]
 // Renders the bench scenes with every strategy, measures wall time and per-pixel CIEDE2000
@@ -13,6 +14,7 @@
 #include "app/cli_policy.h"
 #include "core/bench/bench_run.h"
 #include "core/bench/frontier_plot.h"
+#include "core/bench/response_bench.h"
 #include "core/io/atomic_file.h"
 #include "core/base/input_error.h"
 #include "core/base/install_layout.h"
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
   pmsim::BenchOptions opt;
   opt.cache_dir = default_cache_dir();
   std::string json_path, out_dir, from_json, size, threads;
-  bool no_throughput = false;
+  bool no_throughput = false, apply_settings = false;
   CLI::App app{
       "Renders the bench scenes with every strategy and measures time and CIEDE2000 against "
       "converged references.",
@@ -69,6 +71,9 @@ int main(int argc, char** argv) {
                  "else $XDG_CACHE_HOME/pmsim/bench-cache or ~/.cache/pmsim/bench-cache)")
       ->type_name("DIR");
   app.add_flag("--no-throughput", no_throughput, "skip the ray-throughput measurement");
+  app.add_flag("--apply-settings", apply_settings,
+               "only time applying the settings to a --size² Disc response of the granite (stage 30°, and "
+               "with the gypsum plate; median of 15 frames each)");
   app.add_option("--scene", opt.scene_filter, "only the scenes whose name contains it")->type_name("SUBSTR");
   app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")
       ->type_name("SUBSTR");
@@ -93,6 +98,10 @@ int main(int argc, char** argv) {
     pmsim::cli::usage_error(kProgram, e.what());
   }
   try {
+    if (apply_settings) {
+      std::cout << pmsim::response_apply_note(opt.size > 0 ? opt.size : 512, 15, std::cerr) << "\n";
+      return 0;
+    }
     pmsim::BenchReport rep;
     if (!from_json.empty()) {
       std::ifstream in(from_json);

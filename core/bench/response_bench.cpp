@@ -58,6 +58,27 @@ double compose_ms(const ResponseProgress& p, const InstrumentSettings& in, int n
 
 }  // namespace
 
+std::string response_apply_note(int compose_size, int frames, std::ostream& log) {
+  // The frame's work at the app's size: a 3-trace Disc response (its cost does not depend on passes).
+  const Scene big = granite_crossed(compose_size);
+  const auto big_slab = section_slab(big);
+  log << "apply settings: a " << compose_size << "² Disc response, 3 traces a pixel… " << std::flush;
+  const ResponseProgress one = traced(*big_slab, big, ResponseCoverage::Disc, 3, 0.0, 1);
+  log << "done\n";
+  Scene turned = big;
+  turned.stage_deg = 30.0;
+  Scene plate = turned;
+  plate.compensator = Compensator::Gypsum;
+  const double plain = compose_ms(one, instrument_settings(turned), frames);
+  const double with_plate = compose_ms(one, instrument_settings(plate), frames);
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "applying the settings to a %d² Disc response (%d×%d grid): %.2f ms (stage 30°), %.2f ms with the "
+                "gypsum plate (median of %d)",
+                compose_size, one.response->nx, one.response->ny, plain, with_plate, frames);
+  return buf;
+}
+
 std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick, std::vector<std::string>& notes,
                                           std::ostream& log) {
   const int n = std::min(size, 256);
@@ -132,22 +153,9 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick
   notes.push_back(buf);
   log << "  " << buf << "\n";
   if (compose_size > 0) {
-    // The frame's work at the app's size: a 1-pass Disc response (its cost does not depend on passes).
-    const Scene big = granite_crossed(compose_size);
-    const auto big_slab = section_slab(big);
-    const ResponseProgress one = traced(*big_slab, big, ResponseCoverage::Disc, 3, 0.0, 1);
-    Scene turned = big;
-    turned.stage_deg = 30.0;
-    Scene plate = turned;
-    plate.compensator = Compensator::Gypsum;
-    const double plain = compose_ms(one, instrument_settings(turned), 15);
-    const double with_plate = compose_ms(one, instrument_settings(plate), 15);
-    std::snprintf(buf, sizeof buf,
-                  "applying the settings to a %d² Disc response (%d×%d grid): %.2f ms (stage 30°), %.2f ms with the "
-                  "gypsum plate (median of 15)",
-                  compose_size, one.response->nx, one.response->ny, plain, with_plate);
-    notes.push_back(buf);
-    log << "  " << buf << "\n";
+    const std::string note = response_apply_note(compose_size, 15, log);
+    notes.push_back(note);
+    log << "  " << note << "\n";
   }
   return rows;
 }

@@ -18,4 +18,9 @@ namespace pmsim {
 std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick, std::vector<std::string>& notes,
                                           std::ostream& log);
 
+// Only the apply-settings timing (pmsim-bench --apply-settings): a 3-trace compose_size² Disc
+// response of the granite composed at stage 30° without and with the gypsum plate, the median
+// of `frames` wall times each, as one line.
+std::string response_apply_note(int compose_size, int frames, std::ostream& log);
+
 }  // namespace pmsim
