@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <mutex>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -41,13 +43,135 @@ void band_retardance(const CompensatorPlate& plate, double lo_nm, double width_n
   }
 }
 
+// A buffer kept between frames for one role (the contracted grid, the contracted nodes): a fresh
+// 2–9 MB buffer a frame costs its page faults and zero-filling. One buffer a role, the largest
+// asked for; a frame composed while another holds it takes a fresh one.
+class ScratchSlot {
+ public:
+  std::vector<float> take(std::size_t n) {
+    std::vector<float> v;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      v.swap(kept_);
+    }
+    if (v.size() < n) v.resize(n);
+#ifndef NDEBUG
+    std::fill(v.begin(), v.end(), std::numeric_limits<float>::quiet_NaN());  // a read outside the spans shows
+#endif
+    return v;
+  }
+  void give(std::vector<float>&& v) {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (v.size() > kept_.size()) kept_.swap(v);
+  }
+
+ private:
+  std::mutex mu_;
+  std::vector<float> kept_;
+};
+ScratchSlot& grid_slot() {
+  static ScratchSlot s;
+  return s;
+}
+ScratchSlot& node_slot() {
+  static ScratchSlot s;
+  return s;
+}
+
+// Per row of a field of points, the columns [lo, hi] a frame's samples read (lo > hi: none).
+struct Spans {
+  std::vector<int> lo, hi;
+};
+
+// The columns of each row of a w × h field that samples anywhere in the convex quad `q` (the
+// image's pixel centres in point units) read with a kernel of points floor(x) − before …
+// floor(x) + after, with one point more on each side for the rounding of the positions. Where the
+// quad leaves the field the samples are clamped: every point then counts as read.
+Spans read_spans(const std::array<glm::dvec2, 4>& q, int w, int h, int before, int after) {
+  Spans sp;
+  sp.lo.assign(std::size_t(h), 0);
+  sp.hi.assign(std::size_t(h), w - 1);
+  for (const glm::dvec2& p : q)
+    if (!(p.x >= 0.0 && p.x <= w - 1 && p.y >= 0.0 && p.y <= h - 1)) return sp;
+  for (int j = 0; j < h; ++j) {
+    // Samples with j among their rows lie in y ∈ [j − after, j + before + 1), widened by one.
+    const double ylo = j - after - 1.0, yhi = j + before + 2.0;
+    double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin;
+    for (std::size_t e = 0; e < 4; ++e) {
+      const glm::dvec2 a = q[e], b = q[(e + 1) % 4];
+      double t0 = 0.0, t1 = 1.0;
+      if (a.y == b.y) {
+        if (a.y < ylo || a.y > yhi) continue;
+      } else {
+        double ta = (ylo - a.y) / (b.y - a.y), tb = (yhi - a.y) / (b.y - a.y);
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) continue;
+      }
+      for (const double t : {t0, t1}) {
+        const double x = a.x + t * (b.x - a.x);
+        xmin = std::min(xmin, x);
+        xmax = std::max(xmax, x);
+      }
+    }
+    if (xmin > xmax) {
+      sp.lo[std::size_t(j)] = 1;
+      sp.hi[std::size_t(j)] = 0;
+      continue;
+    }
+    sp.lo[std::size_t(j)] = std::clamp(int(std::floor(xmin)) - before - 1, 0, w - 1);
+    sp.hi[std::size_t(j)] = std::clamp(int(std::floor(xmax)) + after + 1, 0, w - 1);
+  }
+  return sp;
+}
+
+// Where the image's pixel centres fall on the grid (in grid points) at a frame: the map the
+// sampling uses, and the corners of the field it covers.
+struct FieldMap {
+  int w = 0, h = 0;
+  double c = 1.0, s = 0.0, scale = 1.0, cx = 0.0, cy = 0.0;
+  bool aligned = false;
+  glm::dvec2 at(double x, double y) const {
+    // The image offset (pixels, y up) turned back by the stage's turn from the frame: R(−Δ).
+    const double fx = (x - 0.5 * (w - 1)) * scale, fy = (0.5 * (h - 1) - y) * scale;
+    return {(aligned ? fx : c * fx + s * fy) + cx, cy - (aligned ? fy : -s * fx + c * fy)};
+  }
+  std::array<glm::dvec2, 4> corners(double over) const {
+    return {at(0, 0) / over, at(w - 1, 0) / over, at(w - 1, h - 1) / over, at(0, h - 1) / over};
+  }
+};
+
+FieldMap field_map(const SpecimenResponse& r, const InstrumentSettings& in) {
+  FieldMap m;
+  m.w = r.image_width;
+  m.h = r.image_height;
+  const double rel = in.stage_rad - r.frame_stage_rad;
+  m.c = std::cos(rel);
+  m.s = std::sin(rel);
+  m.aligned = rel == 0.0 && r.nx == m.w && r.ny == m.h && r.grid_um == r.um_per_px;
+  m.scale = r.um_per_px / r.grid_um;  // image pixels → grid points
+  m.cx = 0.5 * (r.nx - 1);
+  m.cy = 0.5 * (r.ny - 1);
+  return m;
+}
+
 // What a frame reads from the response: per grid point and per chroma node, the X, Y, Z (or the
-// grey) its block passes at the frame's settings, before resampling.
+// grey) its block passes at the frame's settings, before resampling; only at the points the
+// frame's samples read (read_spans), the rest of the buffers unspecified.
 struct FrameFields {
   std::vector<float> grid;   // nx·ny × channels
-  std::vector<float> nodes;  // cnx·cny × 3
+  std::vector<float> nodes;  // cnx·cny × 3 (empty: no colour nodes)
   int channels = 1;
   glm::dvec3 grid_scale{1.0};  // one channel: XYZ = grid_scale × value
+  FrameFields() = default;
+  FrameFields(const FrameFields&) = delete;
+  FrameFields& operator=(const FrameFields&) = delete;
+  FrameFields(FrameFields&&) = default;
+  ~FrameFields() {
+    grid_slot().give(std::move(grid));
+    node_slot().give(std::move(nodes));
+  }
 };
 
 // The 12 weights u = v ⊗ t of a block for an analyzer-side v and an input t: vᵀ·B·t = u·B.
@@ -64,7 +188,7 @@ inline float dot12(const Weights12& u, const float* b) {
   return sum;
 }
 
-FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in) {
+FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in, const FieldMap& map) {
   // The blocks' vibrations are the specimen's own x and y (the tracer's frame): a lab angle ψ is
   // ψ − θ there.
   const double rel = in.stage_rad;
@@ -115,23 +239,30 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
     for (std::size_t k = 0; k < 3; ++k) u_ref[k] = weights(v_ref[k], t);
   }
   const std::size_t n = std::size_t(r.nx) * std::size_t(r.ny);
-  f.grid.assign(n * std::size_t(f.channels), 0.0f);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& rg) {
-    for (std::size_t g = rg.begin(); g < rg.end(); ++g)
-      for (int k = 0; k < f.channels; ++k)
-        f.grid[g * std::size_t(f.channels) + std::size_t(k)] = dot12(u_ref[std::size_t(k)], &r.ref[g * 12]);
+  f.grid = grid_slot().take(n * std::size_t(f.channels));
+  const Spans gs = read_spans(map.corners(1.0), r.nx, r.ny, 1, 2);  // the cubic's 4 × 4 points
+  tbb::parallel_for(tbb::blocked_range<int>(0, r.ny, 16), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j) {
+      const std::size_t row = std::size_t(j) * std::size_t(r.nx);
+      for (std::size_t g = row + std::size_t(gs.lo[std::size_t(j)]); int(g - row) <= gs.hi[std::size_t(j)]; ++g)
+        for (int k = 0; k < f.channels; ++k)
+          f.grid[g * std::size_t(f.channels) + std::size_t(k)] = dot12(u_ref[std::size_t(k)], &r.ref[g * 12]);
+    }
   });
   if (mono || r.delta.empty()) return f;
   const std::size_t nn = std::size_t(r.cnx) * std::size_t(r.cny);
-  f.nodes.assign(nn * 3, 0.0f);
+  f.nodes = node_slot().take(nn * 3);
+  const Spans ns = read_spans(map.corners(double(r.chroma_period)), r.cnx, r.cny, 0, 1);  // bilinear
   // Without an accessory, the colour-weighted blocks; with one, each band's.
   const Weights12 u_plain = weights(v_plain, t);
   std::vector<std::array<Weights12, 3>> u_band(static_cast<std::size_t>(nb));
   if (accessory)
     for (std::size_t b = 0; b < std::size_t(nb); ++b)
       for (std::size_t k = 0; k < 3; ++k) u_band[b][k] = weights(v_band[b][k], t);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nn, 256), [&](const tbb::blocked_range<std::size_t>& rg) {
-    for (std::size_t q = rg.begin(); q < rg.end(); ++q) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, r.cny, 2), [&](const tbb::blocked_range<int>& rows) {
+    for (int J = rows.begin(); J < rows.end(); ++J)
+    for (std::size_t q = std::size_t(J) * std::size_t(r.cnx) + std::size_t(ns.lo[std::size_t(J)]);
+         int(q - std::size_t(J) * std::size_t(r.cnx)) <= ns.hi[std::size_t(J)]; ++q) {
       float sum[3] = {0.0f, 0.0f, 0.0f};
       if (!accessory) {
         for (std::size_t k = 0; k < 3; ++k) sum[k] = dot12(u_plain, &r.delta_xyz[(q * 3 + k) * 12]);
@@ -224,20 +355,16 @@ RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings
   img.time_ms = r.time_ms;
   img.model_report = r.model_report;
   if (r.nx <= 0 || r.ny <= 0 || r.ref.empty()) return img;
-  const FrameFields f = contract_response(r, in);
+  const FieldMap map = field_map(r, in);
+  const FrameFields f = contract_response(r, in, map);
   const bool mono = r.single_wavelength_nm > 0.0;
-  const double rel = in.stage_rad - r.frame_stage_rad;
-  const double c = std::cos(rel), s = std::sin(rel);
-  const bool aligned = rel == 0.0 && r.nx == w && r.ny == h && r.grid_um == r.um_per_px;
-  const double scale = r.um_per_px / r.grid_um;  // image pixels → grid points
+  const bool aligned = map.aligned;
   const double P = r.chroma_period;
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < w; ++x) {
-        // The image offset (pixels, y up) turned back by the stage's turn from the frame: R(−Δ).
-        const double fx = (x - 0.5 * (w - 1)) * scale, fy = (0.5 * (h - 1) - y) * scale;
-        const double gx = (aligned ? fx : c * fx + s * fy) + 0.5 * (r.nx - 1);
-        const double gy = 0.5 * (r.ny - 1) - (aligned ? fy : -s * fx + c * fy);
+        const glm::dvec2 at = map.at(x, y);
+        const double gx = at.x, gy = at.y;
         glm::dvec3 xyz(0.0);
         const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
         const Taps g_taps = aligned ? Taps{} : cubic_taps(r.nx, r.ny, gx, gy);
