@@ -225,6 +225,14 @@ const std::vector<Key>& keys() {
            s.sample.medium_index = as_number(v);
        },
        [](const Scene& s) -> json { return s.sample.medium_index ? json(*s.sample.medium_index) : json(nullptr); }},
+      {"sample.orientation_seed",
+       [](Scene& s, const json& v) {
+         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+           s.sample.orientation_seed.reset();
+         else
+           s.sample.orientation_seed = as_int(v);
+       },
+       [](const Scene& s) -> json { return s.sample.orientation_seed ? json(*s.sample.orientation_seed) : json(nullptr); }},
       {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
        [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
       {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },

@@ -94,6 +94,10 @@ struct SampleSettings {
   // dispersion of the liquid series in assets/liquids (core/specimen/immersion_liquid.h).
   // Unset: the mount uses 1.54.
   std::optional<double> medium_index;
+  // sample.orientation_seed: every grain of a thin-section file redrawn in a random orientation
+  // from this seed (0 … 2³¹ − 1; core/microscope/section_reorient.h), a new specimen of the same
+  // rock. Unset: the file's orientations.
+  std::optional<int> orientation_seed;
   bool operator==(const SampleSettings&) const = default;
 };
 

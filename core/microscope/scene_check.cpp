@@ -9,6 +9,7 @@
 #include "core/base/json_reader.h"
 #include "core/crystal/crystal_cut.h"
 #include "core/crystal/mineral_crystallography.h"
+#include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/sample_source.h"
 #include "core/render/exposure.h"
 
@@ -157,6 +158,13 @@ void check_scene(const Scene& s, const std::string& file) {
   if (s.sample_in && s.sample.type == SampleType::Section)
     require(section_known(s.sample.section), file, "sample.section", s.sample.section,
             "no such thin-section file in assets/sections");
+  if (s.sample.orientation_seed) {
+    require(*s.sample.orientation_seed >= 0, file, "sample.orientation_seed", num(*s.sample.orientation_seed),
+            "must be in [0, 2147483647]");
+    // A map's orientations are measurements: redrawing them would no longer be that rock.
+    require(!is_orientation_map_path(s.sample.section), file, "sample.orientation_seed",
+            num(*s.sample.orientation_seed), "applies to thin-section files, not to an EBSD map");
+  }
   require(medium_known(s.sample.medium), file, "sample.medium", s.sample.medium, "unknown mounting medium");
   require(std::isfinite(s.compensator_position) && s.compensator_position >= 0 && s.compensator_position <= 1,
           file, "compensator_position", num(s.compensator_position), "must be in [0, 1]");

@@ -1,4 +1,5 @@
 #include "core/microscope/section_map.h"
+#include "core/microscope/section_reorient.h"
 
 #include <algorithm>
 #include <cctype>
@@ -586,17 +587,20 @@ SectionMap section_from_json(const nlohmann::json& j, const std::string& origin)
   }
 }
 
-std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path) {
+std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, std::optional<int> orientation_seed) {
   const std::string path = section_path(name_or_path);
   if (path.empty())
     throw InputError("", "sample.section", name_or_path, "no such thin-section file in assets/sections");
   static std::mutex mu;
-  static std::map<std::string, std::shared_ptr<const SectionMap>> cache;
+  static std::map<std::pair<std::string, std::optional<int>>, std::shared_ptr<const SectionMap>> cache;
   std::lock_guard<std::mutex> lock(mu);
-  auto it = cache.find(path);
+  const auto key = std::pair{path, orientation_seed};
+  auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  auto m = std::make_shared<const SectionMap>(section_from_json(read_json_file(path, "thin-section file"), path));
-  cache[path] = m;
+  nlohmann::json j = read_json_file(path, "thin-section file");
+  if (orientation_seed) reorient_section_grains(j, std::uint64_t(*orientation_seed));
+  auto m = std::make_shared<const SectionMap>(section_from_json(j, path));
+  cache[key] = m;
   return m;
 }
 

@@ -163,7 +163,9 @@ class SectionMap {
 // file, key and value on bad content, an unknown mineral or an unknown twin law.
 SectionMap section_from_json(const nlohmann::json& j, const std::string& origin);
 
-// Loads (once, cached by resolved path) a section file.
-std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path);
+// Loads (once, cached by resolved path and seed) a section file; with an orientation seed its
+// grains are given new orientations first (sample.orientation_seed, section_reorient.h).
+std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path,
+                                               std::optional<int> orientation_seed = std::nullopt);
 
 }  // namespace pmsim

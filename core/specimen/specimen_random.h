@@ -1,18 +1,13 @@
 #pragma once
-// The one random number source of the specimen module: SplitMix64 (Steele, Lea, Flood, "Fast
-// splittable pseudorandom number generators", OOPSLA 2014), stateless per call so that a pixel's
-// samples depend on (pixel, sample) only, not on the thread that draws them.
+// The one random number source of the specimen module: SplitMix64 (core/base/splitmix64.h),
+// stateless per call so that a pixel's samples depend on (pixel, sample) only, not on the thread
+// that draws them.
 #include <cmath>
 #include <cstdint>
 
-namespace pmsim {
+#include "core/base/splitmix64.h"
 
-constexpr std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
+namespace pmsim {
 
 struct SpecimenRandom {
   std::uint64_t state;
@@ -20,7 +15,7 @@ struct SpecimenRandom {
   // Uniform in [0, 1): the top 53 bits.
   double uniform() {
     state = splitmix64(state);
-    return double(state >> 11) * 0x1.0p-53;
+    return unit_interval(state);
   }
 };
 
