@@ -597,9 +597,9 @@ int main(int argc, char** argv) {
                {"passes", 1},
                {"model_report", "scene3d: Whitted ray tracer with SML lenses"}};
     } else {
-      if (j.is_object() && j.contains("type") && j["type"] != "microscope")
+      if (j.is_object() && j.contains("type") && j["type"] != "microscope" && j["type"] != "pmexercise")
         throw pmsim::InputError(path, "type", j["type"].dump(),
-                                "pmsim-render renders \"microscope\" and \"scene3d\" scenes");
+                                "pmsim-render renders \"microscope\" and \"scene3d\" scenes (and an exercise's specimen)");
       pmsim::Scene scene = pmsim::scene_from_json(j, path, &warnings);
       for (const std::string& w : warnings) std::cerr << "pmsim-render: warning: " << w << "\n";
       pmsim::apply_settings(scene, args.sets);

@@ -17,7 +17,7 @@ if [ "$build_it" = 1 ]; then
   [ -f "$build/CMakeCache.txt" ] || { command -v ninja >/dev/null 2>&1 && generator=(-G Ninja); }
   cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j "$(nproc)" --target pmsim pmsim-render pmsim-trace pmsim-bench \
-        pmsim-experiments pmsim-ebsd-example pmsim_oiio pmsim_install_files
+        pmsim-experiments pmsim-ebsd-example pmsim-exercise pmsim_oiio pmsim_install_files
 fi
 # umask 022: the package's files get the modes Debian expects (0755 folders and programs, 0644 data)
 # whatever the checkout's umask.

@@ -3,7 +3,7 @@
 # (already built) tree with scripts/package.sh --no-build, which fails on any lintian error; unpacks
 # it with dpkg -x into a scratch root; then, from another working directory and with no environment
 # beyond PATH, runs the unpacked programs: --version of every program, pmsim-render on the default
-# scene flat (small), pmsim --headless writing a screenshot, pmsim-exercise --help when it exists.
+# scene flat (small), pmsim --headless writing a screenshot, pmsim-exercise making and grading a class.
 # Fails if a path of the source or build tree occurs in an installed program or data file.
 # usage: install_package_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
@@ -48,9 +48,12 @@ run "$bin/pmsim-render" "$scratch/root/usr/share/pmsim/scenes/quartz_plate_45.js
     --set render.width=32 --set render.height=32 --out plate.exr || fail "writing an EXR (OpenImageIO module) failed"
 [ -s plate.exr ] || fail "no plate.exr"
 
-if [ -x "$bin/pmsim-exercise" ]; then
-  run "$bin/pmsim-exercise" --help >/dev/null || fail "pmsim-exercise --help failed"
-fi
+# A class exercise from an installed template (assets found beside the program).
+run "$bin/pmsim-exercise" make crystal-figures --students 2 --out class || fail "pmsim-exercise make failed"
+[ -s class/key.json ] && [ -s class/student02.pmexercise.json ] || fail "pmsim-exercise wrote no class"
+run "$bin/pmsim-exercise" grade class/key.json --out report.csv || fail "pmsim-exercise grade failed"
+[ "$(wc -l < report.csv)" = 9 ] || fail "report.csv: expected a header and 8 rows"
+
 
 desktop-file-validate "$scratch/root/usr/share/applications/pmsim.desktop" || fail "the desktop entry is invalid"
 [ -f "$scratch/root/usr/share/icons/hicolor/256x256/apps/pmsim.png" ] || fail "no icon"

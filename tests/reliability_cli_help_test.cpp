@@ -40,6 +40,7 @@ const Program kPrograms[] = {
      {"--quick", "--json", "--out-dir", "--size", "--threads", "--cache-dir", "--no-throughput", "--scene",
       "--strategy", "--images", "--from-json"}},
     {"pmsim-experiments", {"--out-dir", "--quick", "fig3", "fig4", "brewster", "vignetting", "cone-table"}},
+    {"pmsim-exercise", {"make", "grade", "list"}},
 };
 
 // The one message style of a usage error.

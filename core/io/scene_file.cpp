@@ -311,6 +311,16 @@ void read_key(Scene& s, const Key& k, const json& v, const std::string& file, co
 
 Scene scene_from_json(const json& j, const std::string& file, std::vector<std::string>* warnings) {
   if (!j.is_object()) throw InputError(file, "", "", "a scene file must hold a JSON object");
+  // A student's exercise file (core/exercise/exercise_files.h) opens as its specimen.
+  if (j.contains("type") && j["type"] == "pmexercise") {
+    if (!j.contains("scene") || !j["scene"].is_object())
+      throw InputError(file, "scene", "", "an exercise file holds its specimen's scene as an object");
+    try {
+      return scene_from_json(j["scene"], file, warnings);
+    } catch (const InputError& e) {
+      throw e.under("scene");
+    }
+  }
   if (j.contains("type") && !(j["type"].is_string() && j["type"] == "microscope"))
     throw InputError(file, "type", shown(j["type"]), "this reader takes microscope scenes");
   Scene s;
