@@ -20,13 +20,6 @@ namespace {
 const char* const kTemplates[] = {"granite-minerals", "basalt-minerals", "schist-minerals", "crystal-figures",
                                   "grain-mount-relief"};
 
-KeyStudent key_of(const StudentExercise& ex) {
-  KeyStudent k{ex.student, "", {}};
-  for (const StudentTask& t : ex.tasks)
-    k.tasks.push_back(KeyTask{t.spec.id, t.spec.kind, t.truth.answer, t.spec.tolerance, t.truth.explanation});
-  return k;
-}
-
 // An answer just beyond the tolerance (numbers) or another word of the kind (words).
 nlohmann::json wrong_answer(const KeyTask& t) {
   const TaskKindInfo& info = task_kind_info(t.kind);
@@ -91,7 +84,7 @@ TEST(ExerciseClass, EveryTemplateGradesItsKeyFullAndItsPerturbationZero) {
       const StudentExercise ex = make_student_exercise(t, "s" + std::to_string(i), 1000 + 7919 * i);
       ASSERT_EQ(ex.tasks.size(), t.tasks.size());
       specimens.insert(student_file_json(t, ex)["scene"].dump());
-      key.push_back(key_of(ex));
+      key.push_back(key_student(ex));
       StudentAnswers r{"", ex.student, {}}, w{"", ex.student, {}};
       for (const KeyTask& kt : key.back().tasks) {
         r.answers.emplace_back(kt.task, kt.answer);
@@ -125,6 +118,7 @@ TEST(ExerciseClass, ReproducibleAndStudentFileHoldsNoAnswer) {
   EXPECT_EQ(text.find("\"answer\""), std::string::npos);
   EXPECT_EQ(text.find("explanation"), std::string::npos);
   EXPECT_EQ(text.find("euler"), std::string::npos);
+  EXPECT_EQ(answers_path_for("/c/student07.pmexercise.json"), "/c/student07.answers.json");
 }
 
 // The key agrees with what the renderer shows: a grain of an extinction task, rendered between

@@ -114,6 +114,27 @@ std::vector<KeyStudent> read_key_file(const std::string& path) {
   return out;
 }
 
+KeyStudent key_student(const StudentExercise& ex, const std::string& exercise_file) {
+  KeyStudent k{ex.student, exercise_file, {}};
+  for (const StudentTask& t : ex.tasks)
+    k.tasks.push_back(KeyTask{t.spec.id, t.spec.kind, t.truth.answer,
+                              task_kind_info(t.spec.kind).numeric
+                                  ? std::optional<double>(t.spec.tolerance.value_or(task_kind_info(t.spec.kind).default_tolerance))
+                                  : std::nullopt,
+                              t.truth.explanation});
+  return k;
+}
+
+std::string answers_path_for(const std::string& student_file) {
+  std::string stem = student_file;
+  for (const char* suffix : {".pmexercise.json", ".json"})
+    if (stem.size() > std::string_view(suffix).size() && stem.ends_with(suffix)) {
+      stem.resize(stem.size() - std::string_view(suffix).size());
+      break;
+    }
+  return stem + ".answers.json";
+}
+
 StudentAnswers read_answers_file(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "answers file");
   const JsonReader root(j, path);

@@ -43,12 +43,17 @@ struct KeyStudent {
   std::vector<KeyTask> tasks;
 };
 std::vector<KeyStudent> read_key_file(const std::string& path);
+// The key entry of an exercise made in memory (what the app's Check grades against).
+KeyStudent key_student(const StudentExercise& ex, const std::string& exercise_file = "");
 
 struct StudentAnswers {
   std::string path, student;
   std::vector<std::pair<std::string, nlohmann::json>> answers;  // task id → answer (file order)
 };
 StudentAnswers read_answers_file(const std::string& path);
+// Where a student's answers to `student_file` are saved: <folder>/<stem>.answers.json beside it,
+// the stem being the file name less ".pmexercise.json".
+std::string answers_path_for(const std::string& student_file);
 nlohmann::json answers_json(const StudentAnswers& a);
 
 struct GradedTask {
