@@ -2,11 +2,13 @@
 // and the grading of the answers against the key (issue 23; formats in docs/exercises.md).
 //   pmsim-exercise make TEMPLATE --students N --out DIR [--roster FILE] [--seed S]
 //   pmsim-exercise grade DIR/key.json ANSWERS.json... --out report.csv [--json report.json]
+//   pmsim-exercise identify [--relief low|moderate|high|very_high] [--character …] … [--json]
 //   pmsim-exercise list
 // Bad input exits 2 naming the file, key and value, and writes nothing.
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <set>
 
 #include "app/cli_policy.h"
@@ -14,6 +16,7 @@
 #include "core/base/json_reader.h"
 #include "core/base/splitmix64.h"
 #include "core/exercise/exercise_files.h"
+#include "core/exercise/identify.h"
 #include "core/io/atomic_file.h"
 
 namespace {
@@ -104,6 +107,54 @@ int grade(const std::string& key_path, const std::vector<std::string>& answer_pa
   return 0;
 }
 
+// The observations as CLI11 options, each parsed by core (parse_observation) so that the panel
+// and the command read them alike.
+struct IdentifyOptions {
+  std::vector<std::pair<std::string, std::string>> given;  // (observation, value)
+  bool json = false;
+};
+
+void add_identify_options(CLI::App* id, IdentifyOptions& o, std::map<std::string, std::string>& values) {
+  const std::pair<const char*, const char*> obs[] = {
+      {"relief", "relief against n = 1.54: low|moderate|high|very_high"},
+      {"relief-sign", "positive|negative (Becke line into or out of the grain against 1.54)"},
+      {"n", "an index measured in liquids, N or LOW:HIGH"},
+      {"coloured", "yes|no in plane light"},
+      {"pleochroic", "yes|no"},
+      {"order", "highest interference order seen (0: dark between crossed polars in every position)"},
+      {"thickness", "section thickness in µm for --order (default 30)"},
+      {"character", "isotropic|uniaxial|biaxial"},
+      {"sign", "optic sign: positive|negative"},
+      {"two-v", "2V in degrees, N or LOW:HIGH"},
+      {"extinction", "parallel|inclined|symmetric"},
+      {"extinction-angle", "the largest extinction angle measured (deg)"},
+      {"elongation", "sign of elongation: length-slow|length-fast"},
+      {"cleavages", "cleavage directions seen in one grain (0-6)"},
+      {"twin", "a twin law seen (albite, carlsbad, …) or any"}};
+  for (const auto& [name, help] : obs) id->add_option("--" + std::string(name), values[name], help);
+  id->add_flag("--json", o.json, "print the candidates as JSON");
+}
+
+int identify(const std::map<std::string, std::string>& values, const IdentifyOptions& o, const CLI::App& id) {
+  pmsim::Observations obs;
+  for (const auto& [name, value] : values)
+    if (id.count("--" + name) > 0) obs = pmsim::parse_observation(obs, name, value);
+  const auto found = pmsim::identify(obs);
+  if (o.json) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& c : found) j.push_back({{"mineral", c.mineral}, {"why", c.why}});
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << found.size() << " of " << pmsim::library_signatures().size() << " library minerals fit:\n";
+  for (const auto& c : found) {
+    std::cout << "  " << c.mineral;
+    for (std::size_t i = 0; i < c.why.size(); ++i) std::cout << (i ? "; " : ": ") << c.why[i];
+    std::cout << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -127,6 +178,11 @@ int main(int argc, char** argv) {
   gr->add_option("--out", csv, "CSV report: student,task,kind,answer,expected,correct")->required();
   gr->add_option("--json", json, "JSON report with each student's score in [0, 1]");
   CLI::App* ls = app.add_subcommand("list", "list the shipped templates");
+  CLI::App* id = app.add_subcommand(
+      "identify", "list the library minerals consistent with what was observed, each with why (a determinative aid)");
+  IdentifyOptions id_options;
+  std::map<std::string, std::string> observed;
+  add_identify_options(id, id_options, observed);
   pmsim::cli::parse_or_exit(app, argc, argv);
   try {
     if (*mk) {
@@ -134,6 +190,7 @@ int main(int argc, char** argv) {
       return make(template_name, students, roster, out_dir, seed);
     }
     if (*gr) return grade(key_path, answers, csv, json);
+    if (*id) return identify(observed, id_options, *id);
     if (*ls) {
       for (const auto& n : pmsim::exercise_template_names()) {
         const auto t = pmsim::load_exercise_template(n);

@@ -130,3 +130,20 @@ TEST(ExerciseCli, BadInputExitsTwoNamingFileAndKeyWritingNoReport) {
   EXPECT_FALSE(fs::exists(dir + "/x"));
   EXPECT_EQ(run(kExercise, "make granite-minerals --out " + dir + "/x", dir).code, 2);
 }
+
+TEST(ExerciseCli, IdentifyListsCandidatesWithWhy) {
+  const std::string dir = pmsim::test::cli_temp_dir("exercise_cli_identify");
+  ProgramRun r = run(kExercise,
+                     "identify --character uniaxial --sign positive --order 1 --relief low --coloured no --json", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  bool quartz = false;
+  for (const auto& c : j) {
+    EXPECT_NE(c["mineral"], "calcite");  // uniaxial negative, high birefringence
+    if (c["mineral"] == "quartz") quartz = !c["why"].empty();
+  }
+  EXPECT_TRUE(quartz) << r.out;
+  r = run(kExercise, "identify --two-v 70:20", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("'two-v' = 70:20"), std::string::npos) << r.err;
+}
