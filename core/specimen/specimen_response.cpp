@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -160,8 +161,8 @@ FieldMap field_map(const SpecimenResponse& r, const InstrumentSettings& in) {
 // grey) its block passes at the frame's settings, before resampling; only at the points the
 // frame's samples read (read_spans), the rest of the buffers unspecified.
 struct FrameFields {
-  std::vector<float> grid;   // nx·ny × channels
-  std::vector<float> nodes;  // cnx·cny × 3 (empty: no colour nodes)
+  std::vector<float> grid;   // nx·ny × 1 (one channel) or × 4 (X, Y, Z, 0)
+  std::vector<float> nodes;  // cnx·cny × 4: X, Y, Z, 0 (empty: no colour nodes)
   int channels = 1;
   glm::dvec3 grid_scale{1.0};  // one channel: XYZ = grid_scale × value
   FrameFields() = default;
@@ -173,6 +174,15 @@ struct FrameFields {
     node_slot().give(std::move(nodes));
   }
 };
+
+// Four floats in one SIMD register (GCC's vector extension: SSE on x86-64, NEON on arm64).
+using v4 = float __attribute__((vector_size(16)));
+inline v4 load4(const float* p) {
+  v4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store4(float* p, const v4& v) { std::memcpy(p, &v, sizeof v); }
 
 // The 12 weights u = v ⊗ t of a block for an analyzer-side v and an input t: vᵀ·B·t = u·B.
 using Weights12 = std::array<float, 12>;
@@ -239,19 +249,30 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
     for (std::size_t k = 0; k < 3; ++k) u_ref[k] = weights(v_ref[k], t);
   }
   const std::size_t n = std::size_t(r.nx) * std::size_t(r.ny);
-  f.grid = grid_slot().take(n * std::size_t(f.channels));
+  f.grid = grid_slot().take(n * (one ? 1 : 4));
   const Spans gs = read_spans(map.corners(1.0), r.nx, r.ny, 1, 2);  // the cubic's 4 × 4 points
+  // Three channels: X, Y, Z side by side in the lanes of one vector, each the same sum as dot12's.
+  std::array<v4, 12> u_lanes{};
+  for (std::size_t j = 0; j < 12; ++j) u_lanes[j] = v4{u_ref[0][j], u_ref[1][j], u_ref[2][j], 0.0f};
   tbb::parallel_for(tbb::blocked_range<int>(0, r.ny, 16), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j) {
       const std::size_t row = std::size_t(j) * std::size_t(r.nx);
-      for (std::size_t g = row + std::size_t(gs.lo[std::size_t(j)]); int(g - row) <= gs.hi[std::size_t(j)]; ++g)
-        for (int k = 0; k < f.channels; ++k)
-          f.grid[g * std::size_t(f.channels) + std::size_t(k)] = dot12(u_ref[std::size_t(k)], &r.ref[g * 12]);
+      const std::size_t g0 = row + std::size_t(gs.lo[std::size_t(j)]), g1 = row + std::size_t(gs.hi[std::size_t(j)]) + 1;
+      if (one) {
+        for (std::size_t g = g0; g < g1; ++g) f.grid[g] = dot12(u_ref[0], &r.ref[g * 12]);
+      } else {
+        for (std::size_t g = g0; g < g1; ++g) {
+          const float* b = &r.ref[g * 12];
+          v4 sum = u_lanes[0] * b[0];
+          for (std::size_t k = 1; k < 12; ++k) sum += u_lanes[k] * b[k];
+          store4(&f.grid[g * 4], sum);
+        }
+      }
     }
   });
   if (mono || r.delta.empty()) return f;
   const std::size_t nn = std::size_t(r.cnx) * std::size_t(r.cny);
-  f.nodes = node_slot().take(nn * 3);
+  f.nodes = node_slot().take(nn * 4);
   const Spans ns = read_spans(map.corners(double(r.chroma_period)), r.cnx, r.cny, 0, 1);  // bilinear
   // Without an accessory, the colour-weighted blocks; with one, each band's.
   const Weights12 u_plain = weights(v_plain, t);
@@ -278,68 +299,177 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
           }
         }
       }
-      for (std::size_t k = 0; k < 3; ++k) f.nodes[q * 3 + k] = sum[k];
+      store4(&f.nodes[q * 4], v4{sum[0], sum[1], sum[2], 0.0f});
     }
   });
   return f;
 }
 
-// The points and weights a sample at (x, y) (in point units, clamped to the field) reads from a
-// field of w × h points: computed once a pixel and applied to every channel.
-struct Taps {
-  std::array<std::uint32_t, 16> at{};
-  std::array<float, 16> wt{};
-  int n = 0;
-  float apply(const std::vector<float>& v, int channels, int k) const {
-    float sum = 0.0f;
-    for (int i = 0; i < n; ++i) sum += wt[std::size_t(i)] * v[std::size_t(at[std::size_t(i)]) * std::size_t(channels) + std::size_t(k)];
-    return sum;
-  }
-};
-
-Taps bilinear_taps(int w, int h, double x, double y) {
-  x = std::clamp(x, 0.0, double(w - 1));
-  y = std::clamp(y, 0.0, double(h - 1));
-  const int x0 = std::min(int(x), std::max(w - 2, 0)), y0 = std::min(int(y), std::max(h - 2, 0));
-  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-  const float fx = float(x - x0), fy = float(y - y0);
-  Taps t;
-  t.n = 4;
-  t.at = {std::uint32_t(y0 * w + x0), std::uint32_t(y0 * w + x1), std::uint32_t(y1 * w + x0), std::uint32_t(y1 * w + x1)};
-  t.wt = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  return t;
-}
-
-// Catmull–Rom (Keys 1981, a = −½) weights of the four points around fractional position t.
-inline void keys_weights(float t, float w[4]) {
-  const float t2 = t * t, t3 = t2 * t;
+// Catmull–Rom (Keys 1981, a = −½) weights of the four points around fractional position t, for
+// four samples at once (lane p: sample p).
+inline void keys_weights(v4 t, v4 w[4]) {
+  const v4 t2 = t * t, t3 = t2 * t;
   w[0] = -0.5f * t3 + t2 - 0.5f * t;
   w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
   w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
   w[3] = 0.5f * t3 - 0.5f * t2;
 }
 
+// Lanes p of four vectors a[p] as vectors of lane p: the 4 × 4 transpose.
+inline void transpose(v4 a[4]) {
+  const v4 t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(a[0], a[1], 2, 6, 3, 7);
+  const v4 t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(a[2], a[3], 2, 6, 3, 7);
+  a[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  a[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  a[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  a[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// Where four samples read a field of w × h points (positions in point units, clamped to it):
+// the point at or below each (x0, y0) and the fraction past it.
+struct Cell4 {
+  int x0[4], y0[4];
+  v4 fx, fy;
+};
+[[gnu::always_inline]] inline Cell4 cells(const double (&x)[4], const double (&y)[4], int w, int h, int x_max, int y_max) {
+  Cell4 c;
+  for (int p = 0; p < 4; ++p) {
+    const double cx = std::clamp(x[p], 0.0, double(w - 1)), cy = std::clamp(y[p], 0.0, double(h - 1));
+    c.x0[p] = std::min(int(cx), x_max);
+    c.y0[p] = std::min(int(cy), y_max);
+    c.fx[p] = float(cx - c.x0[p]);
+    c.fy[p] = float(cy - c.y0[p]);
+  }
+  return c;
+}
+
 // Cubic convolution (Keys 1981): interpolating, and its passband is flat far closer to the grid's
 // Nyquist limit than a bilinear tent's, so that a turned stage adds little blur to the
-// tent-splatted grid (a fresh render at that angle has the splat's blur only).
-Taps cubic_taps(int w, int h, double x, double y) {
-  x = std::clamp(x, 0.0, double(w - 1));
-  y = std::clamp(y, 0.0, double(h - 1));
-  const int x0 = int(x), y0 = int(y);
-  float wx[4], wy[4];
-  keys_weights(float(x - x0), wx);
-  keys_weights(float(y - y0), wy);
-  Taps t;
-  t.n = 16;
-  for (int j = 0; j < 4; ++j) {
-    const int yy = std::clamp(y0 - 1 + j, 0, h - 1);
-    for (int i = 0; i < 4; ++i) {
-      const int xx = std::clamp(x0 - 1 + i, 0, w - 1);
-      t.at[std::size_t(4 * j + i)] = std::uint32_t(yy * w + xx);
-      t.wt[std::size_t(4 * j + i)] = wx[i] * wy[j];
+// tent-splatted grid (a fresh render at that angle has the splat's blur only). Four samples of a
+// one-channel field of w × h points, separably: each column of a sample's 4 × 4 points weighted by
+// wy, then the four columns by wx (lane p: sample p). At a whole point (fraction 0: weights 0, 1,
+// 0, 0) a sample is that point's value exactly.
+v4 cubic1(const float* v, int w, int h, const Cell4& c) {
+  v4 wx[4], wy[4], col[4];
+  keys_weights(c.fx, wx);
+  keys_weights(c.fy, wy);
+  const std::size_t sw = std::size_t(w);
+  for (int p = 0; p < 4; ++p) {
+    const int x0 = c.x0[p], y0 = c.y0[p];
+    v4 row[4];
+    if (x0 >= 1 && x0 + 2 < w && y0 >= 1 && y0 + 2 < h) {  // inside: 4 rows of 4 adjacent points
+      const float* q = v + std::size_t(y0 - 1) * sw + std::size_t(x0 - 1);
+      for (std::size_t j = 0; j < 4; ++j) row[j] = load4(q + j * sw);
+    } else {
+      for (int j = 0; j < 4; ++j) {
+        const float* q = v + std::size_t(std::clamp(y0 - 1 + j, 0, h - 1)) * sw;
+        for (int i = 0; i < 4; ++i) row[j][i] = q[std::clamp(x0 - 1 + i, 0, w - 1)];
+      }
     }
+    col[p] = wy[0][p] * row[0] + wy[1][p] * row[1] + wy[2][p] * row[2] + wy[3][p] * row[3];
   }
-  return t;
+  transpose(col);  // col[i]: column i of each sample
+  return wx[0] * col[0] + wx[1] * col[1] + wx[2] * col[2] + wx[3] * col[3];
+}
+
+// The same for a field of 4 floats a point (X, Y, Z, 0): out[p] is sample p's X, Y, Z, 0.
+void cubic4(const float* v, int w, int h, const Cell4& c, v4 out[4]) {
+  v4 wx[4], wy[4];
+  keys_weights(c.fx, wx);
+  keys_weights(c.fy, wy);
+  const std::size_t sw = std::size_t(w);
+  for (int p = 0; p < 4; ++p) {
+    std::size_t ys[4], xs[4];
+    for (int k = 0; k < 4; ++k) {
+      ys[k] = std::size_t(std::clamp(c.y0[p] - 1 + k, 0, h - 1)) * sw;
+      xs[k] = std::size_t(std::clamp(c.x0[p] - 1 + k, 0, w - 1));
+    }
+    v4 sum{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      const v4 col = wy[0][p] * load4(v + 4 * (ys[0] + xs[i])) + wy[1][p] * load4(v + 4 * (ys[1] + xs[i])) +
+                     wy[2][p] * load4(v + 4 * (ys[2] + xs[i])) + wy[3][p] * load4(v + 4 * (ys[3] + xs[i]));
+      sum = i == 0 ? wx[0][p] * col : sum + wx[i][p] * col;
+    }
+    out[p] = sum;
+  }
+}
+
+// Four bilinear samples of a field of w × h points of 4 floats (X, Y, Z, 0): out[p] is sample p's.
+[[gnu::always_inline]] inline void bilinear4(const float* v, int w, const Cell4& c, v4 out[4]) {
+  const v4 w00 = (1 - c.fx) * (1 - c.fy), w10 = c.fx * (1 - c.fy), w01 = (1 - c.fx) * c.fy, w11 = c.fx * c.fy;
+  for (int p = 0; p < 4; ++p) {
+    const float* q = v + 4 * (std::size_t(c.y0[p]) * std::size_t(w) + std::size_t(c.x0[p]));
+    const std::size_t dx = c.x0[p] + 1 < w ? 4 : 0, dy = 4 * std::size_t(w);
+    out[p] = w00[p] * load4(q) + w10[p] * load4(q + dx) + w01[p] * load4(q + dy) + w11[p] * load4(q + dy + dx);
+  }
+}
+
+using v2d = double __attribute__((vector_size(16)));
+
+// Rows [y0, y1) of the image, four pixels at a time: each pixel's grid value (cubic, or the point
+// itself when the grid is the pixels) and colour nodes' (bilinear), their XYZ and linear sRGB.
+template <int Stride>
+void compose_rows(const SpecimenResponse& r, const FieldMap& map, const FrameFields& f, int y0, int y1,
+                  RenderImage& img) {
+  const bool mono = r.single_wavelength_nm > 0.0;
+  const double per_node = 1.0 / r.chroma_period;  // exact for the period 4 (and 2, 1)
+  // XYZ → linear sRGB as its matrix's columns, applied in glm's order (the same numbers).
+  const glm::dvec3 m0 = xyz_to_linear_srgb({1.0, 0.0, 0.0}), m1 = xyz_to_linear_srgb({0.0, 1.0, 0.0}),
+                   m2 = xyz_to_linear_srgb({0.0, 0.0, 1.0});
+  const float* grid = f.grid.data();
+  const float* nodes = f.nodes.empty() ? nullptr : f.nodes.data();
+  const int w = map.w;
+  const v2d zero{0.0, 0.0};
+  for (int y = y0; y < y1; ++y)
+    for (int x = 0; x < w; x += 4) {
+      const int np = std::min(4, w - x);  // the last lanes of a row's end repeat its last pixel
+      double gx[4], gy[4], nx[4], ny[4];
+      for (int p = 0; p < 4; ++p) {
+        const glm::dvec2 at = map.at(std::min(x + p, w - 1), y);
+        gx[p] = at.x;
+        gy[p] = at.y;
+        nx[p] = at.x * per_node;
+        ny[p] = at.y * per_node;
+      }
+      const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      v4 g[4];  // lanes: pixels; g[k] channel k (Stride 4), g[0] the one channel
+      if (map.aligned) {
+        for (int p = 0; p < 4; ++p)
+          g[p] = Stride == 1 ? v4{grid[pix + std::size_t(std::min(p, np - 1))], 0.0f, 0.0f, 0.0f}
+                             : load4(grid + 4 * (pix + std::size_t(std::min(p, np - 1))));
+        transpose(g);
+      } else if constexpr (Stride == 1) {
+        g[0] = cubic1(grid, r.nx, r.ny, cells(gx, gy, r.nx, r.ny, r.nx - 1, r.ny - 1));
+      } else {
+        cubic4(grid, r.nx, r.ny, cells(gx, gy, r.nx, r.ny, r.nx - 1, r.ny - 1), g);
+        transpose(g);
+      }
+      v4 n[4] = {};
+      if (nodes) {
+        bilinear4(nodes, r.cnx, cells(nx, ny, r.cnx, r.cny, std::max(r.cnx - 2, 0), std::max(r.cny - 2, 0)), n);
+        transpose(n);
+      }
+      for (int half = 0; half < 2; ++half) {  // two pixels a step in double
+        v2d xyz[3];
+        for (int k = 0; k < 3; ++k) {
+          const v4& gk = g[Stride == 1 ? 0 : k];
+          const v2d gd = {double(gk[2 * half]), double(gk[2 * half + 1])};
+          const v2d nd = {double(n[k][2 * half]), double(n[k][2 * half + 1])};
+          const v2d sum = (Stride == 1 ? f.grid_scale[k] * gd : gd) + nd;
+          xyz[k] = zero < sum ? sum : zero;  // std::max(0.0, sum)
+        }
+        v2d rgb[3];
+        for (int k = 0; k < 3; ++k)
+          rgb[k] = mono ? xyz[1] / r.white.y : m0[k] * xyz[0] + m1[k] * xyz[1] + m2[k] * xyz[2];
+        for (int q = 0; q < 2 && 2 * half + q < np; ++q) {
+          const std::size_t at = (pix + std::size_t(2 * half + q)) * 3;
+          for (int k = 0; k < 3; ++k) {
+            img.xyz[at + std::size_t(k)] = float(xyz[k][q]);
+            img.rgb[at + std::size_t(k)] = float(rgb[k][q]);
+          }
+        }
+      }
+    }
 }
 
 RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings& in) {
@@ -357,32 +487,11 @@ RenderImage compose_isolated(const SpecimenResponse& r, const InstrumentSettings
   if (r.nx <= 0 || r.ny <= 0 || r.ref.empty()) return img;
   const FieldMap map = field_map(r, in);
   const FrameFields f = contract_response(r, in, map);
-  const bool mono = r.single_wavelength_nm > 0.0;
-  const bool aligned = map.aligned;
-  const double P = r.chroma_period;
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y)
-      for (int x = 0; x < w; ++x) {
-        const glm::dvec2 at = map.at(x, y);
-        const double gx = at.x, gy = at.y;
-        glm::dvec3 xyz(0.0);
-        const std::size_t pix = std::size_t(y) * std::size_t(w) + std::size_t(x);
-        const Taps g_taps = aligned ? Taps{} : cubic_taps(r.nx, r.ny, gx, gy);
-        const Taps n_taps = f.nodes.empty() ? Taps{}
-                                            : bilinear_taps(r.cnx, r.cny, gx / P, gy / P);
-        const double g1 = f.channels == 1 ? (aligned ? f.grid[pix] : g_taps.apply(f.grid, 1, 0)) : 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const double g = f.channels == 1 ? f.grid_scale[k] * g1
-                           : aligned       ? f.grid[pix * 3 + std::size_t(k)]
-                                           : g_taps.apply(f.grid, 3, k);
-          xyz[k] = std::max(0.0, g + double(n_taps.apply(f.nodes, 3, k)));
-        }
-        const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / r.white.y) : xyz_to_linear_srgb(xyz);
-        for (int k = 0; k < 3; ++k) {
-          img.xyz[pix * 3 + std::size_t(k)] = float(xyz[k]);
-          img.rgb[pix * 3 + std::size_t(k)] = float(rgb[k]);
-        }
-      }
+    if (f.channels == 1)
+      compose_rows<1>(r, map, f, rows.begin(), rows.end(), img);
+    else
+      compose_rows<4>(r, map, f, rows.begin(), rows.end(), img);
   });
   return img;
 }
