@@ -8,6 +8,25 @@
 #include "core/specimen/probe_point.h"
 
 namespace pmsim {
+
+FragmentOptics fragment_optics(const SpecimenScene& specimen, int fragment, const glm::dvec3& vibration) {
+  const int medium = kFirstFragment + fragment;
+  FragmentOptics f;
+  f.liquid_n = specimen.liquid().n(kBeckeWavelengthNm);
+  f.n_vibration = specimen.index(medium, kBeckeWavelengthNm, vibration);
+  if (const Crystal* crystal = specimen.crystal_of(medium)) {
+    const SectionOptics so =
+        section_optics(specimen.orientation_of(medium), crystal->principal_indices(kBeckeWavelengthNm), {0.0, 0.0, 1.0});
+    f.n_fast = so.n_fast;
+    f.n_slow = so.n_slow;
+  } else {
+    f.n_fast = f.n_slow = f.n_vibration;
+  }
+  const double d = f.n_vibration - f.liquid_n;
+  f.relief = std::abs(d) < kBeckeMatch ? 0 : (d > 0 ? 1 : -1);
+  return f;
+}
+
 BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, double x, double y) {
   const ProbePoint pp = probe_point(scene, x, y);
   const glm::dvec3& vibration = pp.vibration;
@@ -22,18 +41,11 @@ BeckeProbe probe_becke_line(const SpecimenScene& specimen, const Scene& scene, d
     if (specimen.fragment_count() == 0) return r;
     r.fragment = 0;
   }
-  r.mineral_n = specimen.index(kFirstFragment + r.fragment, kBeckeWavelengthNm, vibration);
-  const int medium = kFirstFragment + r.fragment;
-  if (const Crystal* crystal = specimen.crystal_of(medium)) {
-    const SectionOptics so =
-        section_optics(specimen.orientation_of(medium), crystal->principal_indices(kBeckeWavelengthNm), {0.0, 0.0, 1.0});
-    r.n_fast = so.n_fast;
-    r.n_slow = so.n_slow;
-  } else {
-    r.n_fast = r.n_slow = r.mineral_n;
-  }
-  const double d = r.mineral_n - r.liquid_n;
-  r.moves_into_mineral = std::abs(d) < kBeckeMatch ? 0 : (d > 0 ? 1 : -1);
+  const FragmentOptics f = fragment_optics(specimen, r.fragment, vibration);
+  r.mineral_n = f.n_vibration;
+  r.n_fast = f.n_fast;
+  r.n_slow = f.n_slow;
+  r.moves_into_mineral = f.relief;
   return r;
 }
 

@@ -7,6 +7,8 @@
 // Mineralogy, §4 "Becke line"). The values come from the same SpecimenScene the renderer traces.
 #include <string>
 
+#include <glm/vec3.hpp>
+
 #include "core/microscope/scene.h"
 #include "core/specimen/specimen_scene.h"
 
@@ -32,6 +34,16 @@ struct BeckeProbe {
   // isotropic mineral), what sets its interference colour between crossed polars.
   double n_fast = 0.0, n_slow = 0.0;
 };
+
+// What one fragment offers to light at the D line: n′ along `vibration` (a unit horizontal vector
+// in the stage frame) and the two vibration indices of vertical light (equal for an isotropic
+// fragment), and its relief sign against the liquid (+1 higher, −1 lower, 0 within kBeckeMatch).
+// The probe and the ground truth (grain_mount_truth.h) both read fragments through this.
+struct FragmentOptics {
+  double n_vibration = 0.0, n_fast = 0.0, n_slow = 0.0, liquid_n = 0.0;
+  int relief = 0;
+};
+FragmentOptics fragment_optics(const SpecimenScene& specimen, int fragment, const glm::dvec3& vibration);
 
 // `x`, `y`: fractions of the image from its top left (as the app's probe). The mount is `specimen`
 // (grain_mount_specimen(scene)); the view (stage, field, polarizer) is `scene`'s.

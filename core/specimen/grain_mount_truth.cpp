@@ -6,7 +6,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/crystal/section_optics.h"
 #include "core/microscope/view_geometry.h"
 #include "core/specimen/becke_probe.h"
 #include "core/specimen/probe_point.h"
@@ -37,29 +36,21 @@ std::vector<FragmentTruth> fragment_truths(const SpecimenScene& mount, const Sce
     if (l < area.size()) ++area[l];
   // The polarizer's vibration in the stage frame is the same at every pixel (probe_point.h).
   const glm::dvec3 vibration = probe_point(scene, 0.5, 0.5).vibration;
-  const double liquid = mount.liquid().n(kBeckeWavelengthNm);
   const std::string mineral = scene.sample.crystal ? "crystal" : scene.sample.mineral;
   std::vector<FragmentTruth> out;
   for (std::size_t k = 1; k < area.size(); ++k) {
     if (area[k] == 0) continue;
-    const int medium = kFirstFragment + int(k) - 1;
     FragmentTruth t;
     t.label = int(k);
     t.mineral = mineral;
     t.area_px = area[k];
-    t.optic_axes = mount.orientation_of(medium);
-    t.n_polarizer = mount.index(medium, kBeckeWavelengthNm, vibration);
-    if (const Crystal* crystal = mount.crystal_of(medium)) {
-      const SectionOptics so =
-          section_optics(t.optic_axes, crystal->principal_indices(kBeckeWavelengthNm), {0.0, 0.0, 1.0});
-      t.n_fast = so.n_fast;
-      t.n_slow = so.n_slow;
-    } else {
-      t.n_fast = t.n_slow = t.n_polarizer;
-    }
-    t.liquid_n_d = liquid;
-    const double d = t.n_polarizer - liquid;
-    t.relief_vs_medium = std::abs(d) < kBeckeMatch ? "matched" : d > 0 ? "higher" : "lower";
+    t.optic_axes = mount.orientation_of(kFirstFragment + int(k) - 1);
+    const FragmentOptics f = fragment_optics(mount, int(k) - 1, vibration);
+    t.n_polarizer = f.n_vibration;
+    t.n_fast = f.n_fast;
+    t.n_slow = f.n_slow;
+    t.liquid_n_d = f.liquid_n;
+    t.relief_vs_medium = f.relief == 0 ? "matched" : f.relief > 0 ? "higher" : "lower";
     out.push_back(std::move(t));
   }
   return out;
