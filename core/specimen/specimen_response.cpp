@@ -184,6 +184,16 @@ inline v4 load4(const float* p) {
 }
 inline void store4(float* p, const v4& v) { std::memcpy(p, &v, sizeof v); }
 
+// Lanes p of four vectors a[p] as vectors of lane p: the 4 × 4 transpose.
+inline void transpose(v4 a[4]) {
+  const v4 t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(a[0], a[1], 2, 6, 3, 7);
+  const v4 t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(a[2], a[3], 2, 6, 3, 7);
+  a[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  a[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  a[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  a[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
 // The 12 weights u = v ⊗ t of a block for an analyzer-side v and an input t: vᵀ·B·t = u·B.
 using Weights12 = std::array<float, 12>;
 Weights12 weights(const Vec4& v, const Stokes& t) {
@@ -198,7 +208,20 @@ inline float dot12(const Weights12& u, const float* b) {
   return sum;
 }
 
-FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in, const FieldMap& map) {
+// The frame's settings as weights of the stored blocks: vᵀ·B·t = u·B for each block B.
+struct FrameWeights {
+  bool accessory = false;
+  int channels = 1;            // 1: X, Y, Z of the reference block are grid_scale × one sum
+  glm::dvec3 grid_scale{1.0};
+  std::array<Weights12, 3> ref{};  // the reference block's, per channel
+  Weights12 plain{};               // the colour-weighted blocks' (no accessory)
+  // With an accessory: per band, the analyzer through the accessory at the band (unweighted),
+  // and the band's weights W_b (X, Y, Z, 0).
+  std::vector<Weights12> band;
+  std::vector<v4> band_xyz;
+};
+
+FrameWeights frame_weights(const SpecimenResponse& r, const InstrumentSettings& in) {
   // The blocks' vibrations are the specimen's own x and y (the tracer's frame): a lab angle ψ is
   // ψ − θ there.
   const double rel = in.stage_rad;
@@ -208,15 +231,14 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
   const bool mono = r.single_wavelength_nm > 0.0;
   const int nb = r.bands.count();
   const CompensatorPlate plate = make_compensator(in.compensator, in.compensator_position);
-  const bool accessory = in.analyzer_in && plate.present;
-  FrameFields f;
-  // Per band and channel, the analyzer's state through the accessory (×W_b); and for the
-  // reference block, their sums over the bands.
-  std::vector<std::array<Vec4, 3>> v_band(std::size_t(std::max(nb, 1)));
+  FrameWeights fw;
+  fw.accessory = in.analyzer_in && plate.present;
+  // Per channel, the analyzer's state through the accessory summed over the bands with their
+  // weights: the reference block's analyzer side.
   std::array<Vec4, 3> v_ref{};
   if (mono) {
     Mueller4 c = retarder_mueller(0.25 * kPi - rel, 0.0);
-    if (accessory)
+    if (fw.accessory)
       c = retarder_mueller(0.25 * kPi - rel, 2.0 * kPi * compensator_retardation_nm(plate, r.single_wavelength_nm) /
                                                  r.single_wavelength_nm);
     v_ref[0] = through(c, s);
@@ -224,84 +246,111 @@ FrameFields contract_response(const SpecimenResponse& r, const InstrumentSetting
     const RetarderTerms terms = retarder_terms(0.25 * kPi - rel);
     for (int b = 0; b < nb; ++b) {
       double cb = 1.0, sb = 0.0;
-      if (accessory) band_retardance(plate, r.bands.lo_nm[std::size_t(b)], r.bands.width_nm[std::size_t(b)], cb, sb);
+      if (fw.accessory) band_retardance(plate, r.bands.lo_nm[std::size_t(b)], r.bands.width_nm[std::size_t(b)], cb, sb);
       Mueller4 c{};
       for (std::size_t i = 0; i < 16; ++i) c[i] = terms.c0[i] + cb * terms.c1[i] + sb * terms.c2[i];
       const Vec4 v = through(c, s);
+      const glm::dvec3& w = r.bands.weight[std::size_t(b)];
       for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 4; ++i) {
-          const double w = r.bands.weight[std::size_t(b)][k];
-          v_band[std::size_t(b)][std::size_t(k)][std::size_t(i)] = w * v[std::size_t(i)];
-          v_ref[std::size_t(k)][std::size_t(i)] += w * v[std::size_t(i)];
-        }
+        for (int i = 0; i < 4; ++i) v_ref[std::size_t(k)][std::size_t(i)] += w[k] * v[std::size_t(i)];
+      if (fw.accessory) {
+        fw.band.push_back(weights(v, t));
+        fw.band_xyz.push_back(v4{float(w.x), float(w.y), float(w.z), 0.0f});
+      }
     }
   }
   // Without an accessory (or in monochromatic light) every band sees the same analyzer, so X, Y
   // and Z of the reference block are one contraction times the bands' white: one number a point.
-  const bool one = mono || !accessory;
-  f.channels = one ? 1 : 3;
+  const bool one = mono || !fw.accessory;
+  fw.channels = one ? 1 : 3;
   const Vec4 v_plain = {0.5 * s[0], 0.5 * s[1], 0.5 * s[2], 0.5 * s[3]};
-  std::array<Weights12, 3> u_ref{};
+  fw.plain = weights(v_plain, t);
   if (one) {
-    u_ref[0] = weights(mono ? v_ref[0] : v_plain, t);
-    f.grid_scale = mono ? r.white : r.bands.sum;
+    fw.ref[0] = weights(mono ? v_ref[0] : v_plain, t);
+    fw.grid_scale = mono ? r.white : r.bands.sum;
   } else {
-    for (std::size_t k = 0; k < 3; ++k) u_ref[k] = weights(v_ref[k], t);
+    for (std::size_t k = 0; k < 3; ++k) fw.ref[k] = weights(v_ref[k], t);
   }
-  const std::size_t n = std::size_t(r.nx) * std::size_t(r.ny);
-  f.grid = grid_slot().take(n * (one ? 1 : 4));
-  const Spans gs = read_spans(map.corners(1.0), r.nx, r.ny, 1, 2);  // the cubic's 4 × 4 points
-  // Three channels: X, Y, Z side by side in the lanes of one vector, each the same sum as dot12's.
+  return fw;
+}
+
+// The reference blocks contracted at the grid points `spans` lists: one number a point, or X, Y,
+// Z, 0 (each the same sum as dot12's, side by side in the lanes of one vector).
+void contract_grid(const SpecimenResponse& r, const FrameWeights& fw, const Spans& spans, std::vector<float>& grid) {
   std::array<v4, 12> u_lanes{};
-  for (std::size_t j = 0; j < 12; ++j) u_lanes[j] = v4{u_ref[0][j], u_ref[1][j], u_ref[2][j], 0.0f};
+  for (std::size_t j = 0; j < 12; ++j) u_lanes[j] = v4{fw.ref[0][j], fw.ref[1][j], fw.ref[2][j], 0.0f};
   tbb::parallel_for(tbb::blocked_range<int>(0, r.ny, 16), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j) {
       const std::size_t row = std::size_t(j) * std::size_t(r.nx);
-      const std::size_t g0 = row + std::size_t(gs.lo[std::size_t(j)]), g1 = row + std::size_t(gs.hi[std::size_t(j)]) + 1;
-      if (one) {
-        for (std::size_t g = g0; g < g1; ++g) f.grid[g] = dot12(u_ref[0], &r.ref[g * 12]);
+      const std::size_t g0 = row + std::size_t(spans.lo[std::size_t(j)]);
+      const std::size_t g1 = row + std::size_t(spans.hi[std::size_t(j)]) + 1;
+      if (fw.channels == 1) {
+        for (std::size_t g = g0; g < g1; ++g) grid[g] = dot12(fw.ref[0], &r.ref[g * 12]);
       } else {
         for (std::size_t g = g0; g < g1; ++g) {
           const float* b = &r.ref[g * 12];
           v4 sum = u_lanes[0] * b[0];
           for (std::size_t k = 1; k < 12; ++k) sum += u_lanes[k] * b[k];
-          store4(&f.grid[g * 4], sum);
+          store4(&grid[g * 4], sum);
         }
       }
     }
   });
-  if (mono || r.delta.empty()) return f;
-  const std::size_t nn = std::size_t(r.cnx) * std::size_t(r.cny);
-  f.nodes = node_slot().take(nn * 4);
-  const Spans ns = read_spans(map.corners(double(r.chroma_period)), r.cnx, r.cny, 0, 1);  // bilinear
-  // Without an accessory, the colour-weighted blocks; with one, each band's.
-  const Weights12 u_plain = weights(v_plain, t);
-  std::vector<std::array<Weights12, 3>> u_band(static_cast<std::size_t>(nb));
-  if (accessory)
-    for (std::size_t b = 0; b < std::size_t(nb); ++b)
-      for (std::size_t k = 0; k < 3; ++k) u_band[b][k] = weights(v_band[b][k], t);
+}
+
+// The colour nodes `spans` lists contracted to X, Y, Z, 0. Without an accessory the
+// colour-weighted blocks (3 sums of 12 a node); with one each band's difference block, the sum
+// for its analyzer (12 products) times the band's W_b, four bands at a time.
+void contract_nodes(const SpecimenResponse& r, const FrameWeights& fw, const Spans& spans, std::vector<float>& nodes) {
+  const std::size_t nb = fw.band.size();
+  std::vector<std::array<v4, 3>> u(nb);
+  for (std::size_t b = 0; b < nb; ++b)
+    for (std::size_t k = 0; k < 3; ++k) u[b][k] = load4(&fw.band[b][4 * k]);
   tbb::parallel_for(tbb::blocked_range<int>(0, r.cny, 2), [&](const tbb::blocked_range<int>& rows) {
-    for (int J = rows.begin(); J < rows.end(); ++J)
-    for (std::size_t q = std::size_t(J) * std::size_t(r.cnx) + std::size_t(ns.lo[std::size_t(J)]);
-         int(q - std::size_t(J) * std::size_t(r.cnx)) <= ns.hi[std::size_t(J)]; ++q) {
-      float sum[3] = {0.0f, 0.0f, 0.0f};
-      if (!accessory) {
-        for (std::size_t k = 0; k < 3; ++k) sum[k] = dot12(u_plain, &r.delta_xyz[(q * 3 + k) * 12]);
-      } else {
-        // Three independent sums a band (X, Y, Z over the same 12 numbers).
-        for (std::size_t b = 0; b < std::size_t(nb); ++b) {
-          const float* d = &r.delta[(q * std::size_t(nb) + b) * 12];
-          const std::array<Weights12, 3>& u = u_band[b];
-          for (std::size_t j = 0; j < 12; ++j) {
-            sum[0] += u[0][j] * d[j];
-            sum[1] += u[1][j] * d[j];
-            sum[2] += u[2][j] * d[j];
+    for (int J = rows.begin(); J < rows.end(); ++J) {
+      const std::size_t row = std::size_t(J) * std::size_t(r.cnx);
+      const std::size_t q0 = row + std::size_t(spans.lo[std::size_t(J)]);
+      const std::size_t q1 = row + std::size_t(spans.hi[std::size_t(J)]) + 1;
+      for (std::size_t q = q0; q < q1; ++q) {
+        v4 sum{};
+        if (!fw.accessory) {
+          const float* d = &r.delta_xyz[q * 36];
+          sum = v4{dot12(fw.plain, d), dot12(fw.plain, d + 12), dot12(fw.plain, d + 24), 0.0f};
+        } else {
+          const float* d = &r.delta[q * nb * 12];
+          std::size_t b = 0;
+          for (; b + 4 <= nb; b += 4) {
+            v4 e[4];  // lane i: band b + p's products i, i + 4, i + 8, summed
+            for (std::size_t p = 0; p < 4; ++p) {
+              const float* db = d + (b + p) * 12;
+              e[p] = u[b + p][0] * load4(db) + u[b + p][1] * load4(db + 4) + u[b + p][2] * load4(db + 8);
+            }
+            transpose(e);
+            const v4 band_sums = (e[0] + e[1]) + (e[2] + e[3]);  // lane p: band b + p's sum
+            for (std::size_t p = 0; p < 4; ++p) sum += fw.band_xyz[b + p] * band_sums[p];
+          }
+          for (; b < nb; ++b) {
+            const float* db = d + b * 12;
+            const v4 e = u[b][0] * load4(db) + u[b][1] * load4(db + 4) + u[b][2] * load4(db + 8);
+            sum += fw.band_xyz[b] * ((e[0] + e[1]) + (e[2] + e[3]));
           }
         }
+        store4(&nodes[q * 4], sum);
       }
-      store4(&f.nodes[q * 4], v4{sum[0], sum[1], sum[2], 0.0f});
     }
   });
+}
+
+FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in, const FieldMap& map) {
+  const FrameWeights fw = frame_weights(r, in);
+  FrameFields f;
+  f.channels = fw.channels;
+  f.grid_scale = fw.grid_scale;
+  f.grid = grid_slot().take(std::size_t(r.nx) * std::size_t(r.ny) * (fw.channels == 1 ? 1 : 4));
+  contract_grid(r, fw, read_spans(map.corners(1.0), r.nx, r.ny, 1, 2), f.grid);  // the cubic's 4 × 4 points
+  if (r.single_wavelength_nm > 0.0 || r.delta.empty()) return f;
+  f.nodes = node_slot().take(std::size_t(r.cnx) * std::size_t(r.cny) * 4);
+  contract_nodes(r, fw, read_spans(map.corners(double(r.chroma_period)), r.cnx, r.cny, 0, 1), f.nodes);  // bilinear
   return f;
 }
 
@@ -313,16 +362,6 @@ inline void keys_weights(v4 t, v4 w[4]) {
   w[1] = 1.5f * t3 - 2.5f * t2 + 1.0f;
   w[2] = -1.5f * t3 + 2.0f * t2 + 0.5f * t;
   w[3] = 0.5f * t3 - 0.5f * t2;
-}
-
-// Lanes p of four vectors a[p] as vectors of lane p: the 4 × 4 transpose.
-inline void transpose(v4 a[4]) {
-  const v4 t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(a[0], a[1], 2, 6, 3, 7);
-  const v4 t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(a[2], a[3], 2, 6, 3, 7);
-  a[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-  a[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  a[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-  a[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 // Where four samples read a field of w × h points (positions in point units, clamped to it):
