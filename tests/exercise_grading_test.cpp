@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/exercise/colour_words.h"
 #include "core/exercise/exercise_files.h"
 #include "core/microscope/grain_labels.h"
 #include "core/microscope/map_section.h"
@@ -32,6 +33,8 @@ nlohmann::json wrong_answer(const KeyTask& t) {
   }
   if (t.kind == TaskKind::Identify) return t.answer == "halite" ? "fluorite" : "halite";
   if (t.kind == TaskKind::TwinLaw) return t.answer == "albite" ? "carlsbad" : "albite";
+  if (t.kind == TaskKind::Pleochroism)
+    return t.answer.get<std::string>().find("black") == std::string::npos ? "black, black, black" : "pink, pink, pink";
   for (const std::string& c : info.choices)
     if (c != t.answer.get<std::string>()) return c;
   return "none of these";
@@ -68,6 +71,25 @@ TEST(ExerciseAnswers, WordsCaseInsensitiveWithAliases) {
   EXPECT_TRUE(answer_correct(TaskKind::TwinLaw, "Albite twin", "albite", std::nullopt));
   EXPECT_TRUE(answer_correct(TaskKind::ExtinctionType, "straight", "parallel", std::nullopt));
   EXPECT_FALSE(answer_correct(TaskKind::OpticCharacter, 1, "uniaxial", std::nullopt));
+}
+
+// Pleochroism from the absorption data: biotite's X pale yellow, Y = Z dark brown (Nesse 2012: X
+// pale yellow-tan, Y = Z dark brown). An answer names X, Y, Z in order; each word may be the
+// expected one or its nearest neighbour in the colour table, not any other.
+TEST(ExerciseAnswers, PleochroismThreeWordsInOrder) {
+  const std::string biotite = pleochroism_words("biotite");
+  EXPECT_EQ(biotite, "pale yellow, dark brown, dark brown");
+  EXPECT_TRUE(answer_correct(TaskKind::Pleochroism, "Pale Yellow / dark brown / Dark-Brown", biotite, std::nullopt));
+  EXPECT_FALSE(answer_correct(TaskKind::Pleochroism, "dark brown, pale yellow, pale yellow", biotite, std::nullopt));
+  EXPECT_FALSE(answer_correct(TaskKind::Pleochroism, "pale yellow, dark brown", biotite, std::nullopt));
+  const ColourWord* pale = nullptr;
+  for (const ColourWord& w : colour_words())
+    if (w.word == "pale yellow") pale = &w;
+  ASSERT_NE(pale, nullptr);
+  const auto ranked = nearest_colour_words(pale->lab);
+  ASSERT_EQ(ranked[0], "pale yellow");
+  EXPECT_TRUE(answer_correct(TaskKind::Pleochroism, ranked[1] + ", dark brown, dark brown", biotite, std::nullopt));
+  EXPECT_FALSE(answer_correct(TaskKind::Pleochroism, ranked[2] + ", dark brown, dark brown", biotite, std::nullopt));
 }
 
 // A class of three from every shipped template: answered from the key, every task is right;

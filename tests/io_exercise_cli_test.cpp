@@ -70,11 +70,11 @@ TEST(ExerciseCli, MakeAnswerGradeRoundTrip) {
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir + "/report.csv");
   EXPECT_EQ(csv.rfind("student,task,kind,answer,expected,correct\n", 0), 0u) << csv;
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 8);  // a row per student and task
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 9);  // a row per student and task
   EXPECT_NE(csv.find("student01,A1,identify,halite,biotite,false"), std::string::npos) << csv;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir + "/report.json"));
   ASSERT_EQ(report["students"].size(), 3u);
-  EXPECT_DOUBLE_EQ(report["students"][0]["score"].get<double>(), 7.0 / 8.0);
+  EXPECT_DOUBLE_EQ(report["students"][0]["score"].get<double>(), 8.0 / 9.0);
   EXPECT_DOUBLE_EQ(report["students"][1]["score"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(report["students"][2]["score"].get<double>(), 1.0);
 }

@@ -5,6 +5,7 @@
 
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
+#include "core/exercise/colour_words.h"
 #include "core/io/scene_file.h"
 
 namespace pmsim {
@@ -48,6 +49,11 @@ nlohmann::json student_file_json(const ExerciseTemplate& t, const StudentExercis
                         {"where", task.where}};
     if (*info.unit) j["unit"] = info.unit;
     if (!info.choices.empty()) j["choices"] = info.choices;
+    if (task.spec.kind == TaskKind::Pleochroism) {
+      nlohmann::json words = nlohmann::json::array();
+      for (const ColourWord& w : colour_words()) words.push_back(w.word);
+      j["choices"] = words;  // one for each of X, Y, Z
+    }
     if (task.stage_mm) j["stage"] = {{"x_mm", (*task.stage_mm)[0]}, {"y_mm", (*task.stage_mm)[1]}};
     tasks.push_back(std::move(j));
   }

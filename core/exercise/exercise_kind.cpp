@@ -1,10 +1,12 @@
 #include "core/exercise/exercise_kind.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
 #include "core/base/input_error.h"
 #include "core/crystal/crystal.h"
+#include "core/exercise/colour_words.h"
 
 namespace pmsim {
 
@@ -26,6 +28,7 @@ std::string lower_trimmed(std::string_view s) {
     }
   }
   if (out.empty() && a < b) return std::string(s.substr(a, b - a));  // a lone "-": a sign, not a separator
+  while (!out.empty() && out.back() == '-') out.pop_back();
   return out;
 }
 
@@ -71,6 +74,32 @@ std::string synonym(TaskKind kind, const std::string& w) {
   return "";
 }
 
+// The three words of a pleochroism answer, each in lower_trimmed's spelling; empty unless three.
+std::vector<std::string> colour_triple(const std::string& answer) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : answer + ",") {
+    if (c == ',' || c == '/' || c == ';') {
+      out.push_back(lower_trimmed(cur));
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (out.size() != 3 || std::any_of(out.begin(), out.end(), [](const std::string& w) { return w.empty(); })) return {};
+  return out;
+}
+
+bool colour_word_close(const std::string& given, const std::string& expected) {
+  if (given == expected) return true;
+  for (const ColourWord& w : colour_words())
+    if (lower_trimmed(w.word) == expected) {
+      const auto ranked = nearest_colour_words(w.lab);  // ranked[0] is the word itself
+      return ranked.size() > 1 && lower_trimmed(ranked[1]) == given;
+    }
+  return false;
+}
+
 }  // namespace
 
 const std::vector<TaskKindInfo>& task_kinds() {
@@ -93,6 +122,8 @@ const std::vector<TaskKindInfo>& task_kinds() {
       {TaskKind::ReliefVsMedium, "relief_vs_medium", false, 0, "", {"higher", "lower", "matched"},
        "Is the grain's index higher or lower than the medium's (Becke line)?"},
       {TaskKind::TwinLaw, "twin_law", false, 0, "", {}, "Twin law"},
+      {TaskKind::Pleochroism, "pleochroism", false, 0, "", {},
+       "Colours in plane light with X, Y and Z along the polarizer (three colour words, X, Y, Z)"},
   };
   return kinds;
 }
@@ -165,6 +196,13 @@ bool answer_correct(TaskKind kind, const nlohmann::json& answer, const nlohmann:
                     std::optional<double> tolerance) {
   const auto a = normalized_answer(kind, answer), e = normalized_answer(kind, expected);
   if (!a || !e) return false;
+  if (kind == TaskKind::Pleochroism) {
+    const auto g = colour_triple(a->get<std::string>()), x = colour_triple(e->get<std::string>());
+    if (g.empty() || x.empty()) return false;
+    for (int i = 0; i < 3; ++i)
+      if (!colour_word_close(g[std::size_t(i)], x[std::size_t(i)])) return false;
+    return true;
+  }
   if (!task_kind_info(kind).numeric) return *a == *e;
   double x = a->get<double>(), y = e->get<double>();
   if (kind == TaskKind::ExtinctionAngle) {

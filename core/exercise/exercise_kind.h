@@ -23,6 +23,7 @@ enum class TaskKind {
   Birefringence,         // n_γ − n_α (uniaxial |n_ε − n_ω|) at 589.3 nm
   ReliefVsMedium,        // higher | lower | matched (the Becke line)
   TwinLaw,               // a twin law of the mineral file ("albite", "carlsbad", …)
+  Pleochroism,           // "X, Y, Z" colour words of assets/exercises/pleochroic_colours.json
 };
 
 struct TaskKindInfo {
@@ -48,7 +49,10 @@ std::optional<nlohmann::json> normalized_answer(TaskKind kind, const nlohmann::j
 
 // Whether `answer` is right: numbers within `tolerance` (extinction angles folded into
 // [0°, 45°] first, since the two vibration directions are 90° apart and the angle is unsigned);
-// words equal after normalized_answer. A null or malformed answer is wrong.
+// words equal after normalized_answer; pleochroism three colour words (X, Y, Z; separated by
+// commas or slashes), each the expected word or the word nearest to it in the table (colour_words.h:
+// neighbouring words of a descriptive scale are what two observers differ by). A null or malformed
+// answer is wrong.
 bool answer_correct(TaskKind kind, const nlohmann::json& answer, const nlohmann::json& expected,
                     std::optional<double> tolerance);
 

@@ -26,13 +26,12 @@ constexpr double kTraceSin = 0.5;
 
 double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
 
-// CIELAB of white light through 30 µm vibrating along each principal axis (Beer–Lambert).
-std::array<glm::dvec3, 3> axis_colours(const Crystal& c) {
+std::array<glm::dvec3, 3> axis_colours(const Crystal& c, double thickness_um) {
   std::array<glm::dvec3, 3> xyz{};
   for (double l = kVisibleMinNm; l <= kVisibleMaxNm; l += 5.0) {
     const glm::dvec3 w = observer_weight(Illuminant::D65, l) * 5.0;
     const glm::dvec3 mu = c.principal_absorption_per_um(l);
-    for (int a = 0; a < 3; ++a) xyz[std::size_t(a)] += std::exp(-mu[a] * kThicknessUm) * w;
+    for (int a = 0; a < 3; ++a) xyz[std::size_t(a)] += std::exp(-mu[a] * thickness_um) * w;
   }
   const glm::dvec3 white = illuminant_white_xyz(Illuminant::D65);
   std::array<glm::dvec3, 3> lab{};
@@ -42,7 +41,7 @@ std::array<glm::dvec3, 3> axis_colours(const Crystal& c) {
 
 void colour_facts(const Crystal& c, MineralSignature& s) {
   if (!c.absorbing()) return;
-  const auto lab = axis_colours(c);
+  const auto lab = axis_colours(c, kThicknessUm);
   for (const auto& l : lab) s.colour_delta_e = std::max(s.colour_delta_e, glm::length(l - glm::dvec3(100, 0, 0)));
   for (int a = 0; a < 3; ++a)
     for (int b = a + 1; b < 3; ++b)
@@ -123,6 +122,10 @@ void extinction_facts(const Crystal& c, const MineralCrystallography& m, Mineral
 }
 
 }  // namespace
+
+std::array<glm::dvec3, 3> principal_colours_lab(const std::string& mineral, double thickness_um) {
+  return axis_colours(find_mineral(mineral), thickness_um);
+}
 
 const char* relief_class_name(ReliefClass r) {
   switch (r) {

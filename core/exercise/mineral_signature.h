@@ -2,10 +2,13 @@
 // What a student can observe of a library mineral in thin section, computed from its file (indices,
 // absorption, crystallography) — the columns of a determinative table (Nesse 2012, appendix
 // tables), never typed in. pmsim-exercise identify matches a student's observations against these.
+#include <array>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace pmsim {
 
@@ -44,6 +47,11 @@ struct MineralSignature {
 };
 
 MineralSignature mineral_signature(const std::string& mineral);
+
+// CIELAB (D65 white, Y = 100) of white light through `thickness_um` of the mineral vibrating along
+// its X, Y and Z axes (Beer–Lambert on the file's absorption; white for a non-absorbing one): the
+// colours of its pleochroism in plane light.
+std::array<glm::dvec3, 3> principal_colours_lab(const std::string& mineral, double thickness_um = 30.0);
 // Every library mineral's signature (computed once).
 const std::vector<MineralSignature>& library_signatures();
 

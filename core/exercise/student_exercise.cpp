@@ -8,6 +8,8 @@
 #include "core/base/input_error.h"
 #include "core/base/splitmix64.h"
 #include "core/crystal/crystal.h"
+#include "core/exercise/colour_words.h"
+#include "core/exercise/mineral_signature.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/figure_info.h"
 #include "core/microscope/grain_report.h"
@@ -124,6 +126,19 @@ std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral
       t.explanation = "n_gamma - n_alpha = " + fixed(f.n_gamma, 4) + " - " + fixed(f.n_alpha, 4) + " = " +
                       fixed(f.birefringence, 4) + nd;
       return t;
+    case TaskKind::Pleochroism: {
+      const MineralSignature sig = mineral_signature(mineral);
+      if (!sig.pleochroic) return std::nullopt;
+      const auto lab = principal_colours_lab(mineral, thickness_um);
+      t.answer = pleochroism_words(mineral, thickness_um);
+      std::string measured;
+      for (int a = 0; a < 3; ++a)
+        measured += std::string(a ? "; " : "") + "XYZ"[a] + " L* " + fixed(lab[std::size_t(a)].x, 0) + " a* " +
+                    fixed(lab[std::size_t(a)].y, 0) + " b* " + fixed(lab[std::size_t(a)].z, 0);
+      t.explanation = "white light through " + fixed(thickness_um, 0) + " µm vibrating along X, Y, Z: " +
+                      t.answer.get<std::string>() + " (" + measured + "; the nearest words of the colour table)";
+      return t;
+    }
     case TaskKind::MaxInterferenceOrder: {
       if (f.character == "isotropic") return std::nullopt;
       const double gamma_nm = 1000.0 * thickness_um * f.birefringence;
