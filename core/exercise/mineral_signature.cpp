@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -181,6 +184,18 @@ MineralSignature mineral_signature(const std::string& mineral) {
     extinction_facts(c, *m, s);
   }
   return s;
+}
+
+const MineralSignature& cached_mineral_signature(const std::string& mineral) {
+  static std::mutex mu;
+  static std::map<std::string, std::unique_ptr<const MineralSignature>> cache;
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    if (const auto it = cache.find(mineral); it != cache.end()) return *it->second;
+  }
+  auto s = std::make_unique<const MineralSignature>(mineral_signature(mineral));
+  std::lock_guard<std::mutex> lock(mu);
+  return *cache.emplace(mineral, std::move(s)).first->second;  // a racing thread's equal copy may win
 }
 
 const std::vector<MineralSignature>& library_signatures() {

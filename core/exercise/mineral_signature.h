@@ -47,6 +47,8 @@ struct MineralSignature {
 };
 
 MineralSignature mineral_signature(const std::string& mineral);
+// The same, computed once per name for the process (thread-safe; the reference stays valid).
+const MineralSignature& cached_mineral_signature(const std::string& mineral);
 
 // CIELAB (D65 white, Y = 100) of white light through `thickness_um` of the mineral vibrating along
 // its X, Y and Z axes (Beer–Lambert on the file's absorption; white for a non-absorbing one): the

@@ -62,38 +62,9 @@ std::string angles_text(const std::vector<double>& a) {
   return s;
 }
 
-// What a mineral is, whatever its orientation: computed from its indices at n_D.
-struct MineralFacts {
-  std::string character, sign;  // "uniaxial"… ; "positive"/"negative"/""
-  double two_v_deg = 0.0, birefringence = 0.0, n_alpha = 0.0, n_gamma = 0.0;
-};
-MineralFacts mineral_facts(const std::string& name) {
-  const Crystal& c = find_mineral(name);
-  const glm::dvec3 n = c.principal_indices(kIndexNm);
-  MineralFacts f;
-  f.n_alpha = std::min({n.x, n.y, n.z});
-  f.n_gamma = std::max({n.x, n.y, n.z});
-  f.birefringence = f.n_gamma - f.n_alpha;
-  switch (c.symmetry()) {
-    case CrystalSymmetry::Isotropic: f.character = "isotropic"; break;
-    case CrystalSymmetry::Uniaxial:
-      f.character = "uniaxial";
-      f.sign = n.z > n.x ? "positive" : "negative";  // n_ε > n_ω (Nesse 2012 §6)
-      break;
-    case CrystalSymmetry::Biaxial: {
-      f.character = "biaxial";
-      const double two_vz = optic_angle_2v_rad(n.x, n.y, n.z);  // crystal.h: 2Vz
-      f.sign = two_vz < std::numbers::pi / 2 ? "positive" : "negative";
-      f.two_v_deg = std::min(two_vz, std::numbers::pi - two_vz) * 180.0 / std::numbers::pi;
-      break;
-    }
-  }
-  return f;
-}
-
 // The truths that do not depend on the grain's orientation.
 std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral, double thickness_um) {
-  const MineralFacts f = mineral_facts(mineral);
+  const MineralSignature& f = cached_mineral_signature(mineral);
   TaskTruth t;
   const std::string nd = " (indices at " + fixed(kIndexNm, 1) + " nm)";
   switch (kind) {
@@ -106,9 +77,9 @@ std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral
       t.explanation = mineral + " is " + f.character;
       return t;
     case TaskKind::OpticSign:
-      if (f.sign.empty()) return std::nullopt;
-      t.answer = f.sign;
-      t.explanation = mineral + " is " + f.character + " " + f.sign + nd;
+      if (f.optic_sign.empty()) return std::nullopt;
+      t.answer = f.optic_sign;
+      t.explanation = mineral + " is " + f.character + " " + f.optic_sign + nd;
       return t;
     case TaskKind::TwoV:
       if (f.character == "isotropic") return std::nullopt;
@@ -123,12 +94,11 @@ std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral
     case TaskKind::Birefringence:
       if (f.character == "isotropic") return std::nullopt;
       t.answer = rounded(f.birefringence, 4);
-      t.explanation = "n_gamma - n_alpha = " + fixed(f.n_gamma, 4) + " - " + fixed(f.n_alpha, 4) + " = " +
+      t.explanation = "n_gamma - n_alpha = " + fixed(f.n_max, 4) + " - " + fixed(f.n_min, 4) + " = " +
                       fixed(f.birefringence, 4) + nd;
       return t;
     case TaskKind::Pleochroism: {
-      const MineralSignature sig = mineral_signature(mineral);
-      if (!sig.pleochroic) return std::nullopt;
+      if (!f.pleochroic) return std::nullopt;
       const auto lab = principal_colours_lab(mineral, thickness_um);
       t.answer = pleochroism_words(mineral, thickness_um);
       std::string measured;
@@ -295,12 +265,12 @@ void crystal_exercise(const ExerciseTemplate& tp, StudentExercise& ex) {
   const glm::dvec3 b{std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)};
   const glm::dvec3 h{std::cos(psi), std::sin(psi), 0.0};
   const glm::dvec3 o = glm::normalize(h - glm::dot(h, b) * b);
-  const MineralFacts f = mineral_facts(mineral);
+  const MineralSignature& f = cached_mineral_signature(mineral);
   const auto arr = [](const glm::dvec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
   if (f.character == "uniaxial") s.sample.optic_axis = arr(b);
   if (f.character == "biaxial") {
-    s.sample.z_axis = arr(f.sign == "positive" ? b : o);
-    s.sample.x_axis = arr(f.sign == "positive" ? o : b);
+    s.sample.z_axis = arr(f.optic_sign == "positive" ? b : o);
+    s.sample.x_axis = arr(f.optic_sign == "positive" ? o : b);
   }
   const FigureInfo fig = describe_figure(s);
   for (const auto& task : tp.tasks) {
@@ -346,16 +316,24 @@ void grain_mount_exercise(const ExerciseTemplate& tp, StudentExercise& ex) {
   const auto [label, stage_mm] = largest_fragment(*grain_mount_specimen_cached(probe), probe);
   s.stage.x_mm = stage_mm[0], s.stage.y_mm = stage_mm[1];
   probe.stage = s.stage;
-  std::optional<FragmentTruth> truth;
-  for (int attempt = 0; attempt < 64 && !truth; ++attempt) {
+  // n′ of the fragment does not depend on the liquid: read it once, draw the liquid against it,
+  // then take the truth from the mount in that liquid (one more build, not one per draw).
+  const auto n_of = [&](const Scene& sc) -> std::optional<FragmentTruth> {
+    const auto mount = grain_mount_specimen_cached(sc);
+    for (const FragmentTruth& f : fragment_truths(*mount, sc, fragment_label_image(*mount, sc)))
+      if (f.label == label) return f;
+    return std::nullopt;
+  };
+  const std::optional<FragmentTruth> first = n_of(probe);
+  if (!first) throw InputError(tp.file, "specimen", "", "the fragment under the crosshair is not in the field");
+  bool drawn = false;
+  for (int attempt = 0; attempt < 64 && !drawn; ++attempt) {
     const double lo = tp.medium_index[0], hi = tp.medium_index[1];
     probe.sample.medium_index = std::round((lo + (hi - lo) * draw(ex.seed, 5, std::uint64_t(attempt))) * 500.0) / 500.0;
-    const auto mount = grain_mount_specimen_cached(probe);
-    const auto labels = fragment_label_image(*mount, probe);
-    for (const FragmentTruth& f : fragment_truths(*mount, probe, labels))
-      if (f.label == label && std::abs(f.n_polarizer - f.liquid_n_d) > 0.01) truth = f;
+    drawn = std::abs(first->n_polarizer - *probe.sample.medium_index) > 0.01;
   }
-  if (!truth) throw InputError(tp.file, "specimen.medium_index", "", "no liquid in the range is 0.01 from the fragment's index");
+  if (!drawn) throw InputError(tp.file, "specimen.medium_index", "", "no liquid in the range is 0.01 from the fragment's index");
+  const std::optional<FragmentTruth> truth = n_of(probe);
   s.sample.medium_index = probe.sample.medium_index;
   const std::string where = "the fragment under the crosshair with the stage at x = " + fixed(stage_mm[0], 3) +
                             " mm, y = " + fixed(stage_mm[1], 3) + " mm";
