@@ -47,7 +47,8 @@ double number_value(const json& v) {
 
 int integer_value(const json& v) {
   const double d = number_value(v);
-  if (d != std::floor(d) || std::fabs(d) > 1e9) throw BadValue{"expected an integer"};
+  // The whole int range: sample.orientation_seed takes seeds up to 2^31 - 1 (a class exercise's).
+  if (d != std::floor(d) || d > 2147483647.0 || d < -2147483648.0) throw BadValue{"expected an integer"};
   return static_cast<int>(d);
 }
 
