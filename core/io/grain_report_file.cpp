@@ -2,6 +2,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/microscope/view_geometry.h"
+#include "core/render/brightness_test.h"
 
 namespace pmsim {
 
@@ -20,6 +21,17 @@ json grain_report_json(const GrainReport& r) {
              r.sign_of_elongation ? json(sign_of_elongation_name(*r.sign_of_elongation)) : json(nullptr)},
             {"retardation_nm", r.retardation_nm}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
+  // The compensator test by brightness (render/brightness_test.h): the luminance at 45° alone,
+  // with the accessory adding and subtracting, and which way it reads.
+  if (r.retardation_nm > 0.0) {
+    json tests = json::object();
+    for (const auto& [name, accessory] : {std::pair{"mica", Compensator::Mica}, std::pair{"gypsum", Compensator::Gypsum}}) {
+      const BrightnessTest t = brightness_test(r.retardation_nm, accessory);
+      tests[name] = {{"y_alone", t.y_alone}, {"y_addition", t.y_addition}, {"y_subtraction", t.y_subtraction},
+                     {"reading", t.reading}};
+    }
+    j["brightness_test"] = std::move(tests);
+  }
   return j;
 }
 
