@@ -418,10 +418,18 @@ void cubic4(const float* v, int w, int h, const Cell4& c, v4 out[4]) {
   keys_weights(c.fy, wy);
   const std::size_t sw = std::size_t(w);
   for (int p = 0; p < 4; ++p) {
+    const int x0 = c.x0[p], y0 = c.y0[p];
     std::size_t ys[4], xs[4];
-    for (int k = 0; k < 4; ++k) {
-      ys[k] = std::size_t(std::clamp(c.y0[p] - 1 + k, 0, h - 1)) * sw;
-      xs[k] = std::size_t(std::clamp(c.x0[p] - 1 + k, 0, w - 1));
+    if (x0 >= 1 && x0 + 2 < w && y0 >= 1 && y0 + 2 < h) {  // inside: no clamping
+      for (std::size_t k = 0; k < 4; ++k) {
+        ys[k] = (std::size_t(y0 - 1) + k) * sw;
+        xs[k] = std::size_t(x0 - 1) + k;
+      }
+    } else {
+      for (int k = 0; k < 4; ++k) {
+        ys[k] = std::size_t(std::clamp(y0 - 1 + k, 0, h - 1)) * sw;
+        xs[k] = std::size_t(std::clamp(x0 - 1 + k, 0, w - 1));
+      }
     }
     v4 sum{};
     for (std::size_t i = 0; i < 4; ++i) {
