@@ -23,6 +23,7 @@
 #include "core/render/progressive_renderer.h"
 #include "core/render/scale_bar.h"
 #include "ui/asset_lists.h"
+#include "ui/exercise_panel.h"
 #include "ui/teaching.h"
 
 namespace pmsim::ui {
@@ -163,6 +164,8 @@ void App::note(const std::string& message) { notice_ = message; }
 
 bool App::load_scene(const std::string& typed_path) {
   const std::string path = resolve_scene_path(typed_path);
+  // A student's exercise file is a scene and more: its tasks open in the Exercise tab.
+  if (path.ends_with(".pmexercise.json")) return open_exercise(path);
   std::vector<std::string> warnings;
   Scene loaded;
   try {
@@ -270,6 +273,7 @@ void App::frame() {
   const auto t0 = std::chrono::steady_clock::now();
   pull_snapshot();
 
+  poll_exercise();
   Scene edit = scene_;
   bool changed = false;
   draw_controls(edit, changed);
@@ -325,6 +329,10 @@ void App::draw_field(Scene& edit, bool& changed) {
   }
 
   if (scale_bar_ && scene_.mode == ViewMode::Ortho && !scene_.bertrand_in) draw_scale_bar(draw);
+  if (exercise_) {
+    draw_task_markers(draw);
+    draw_reveal(draw);
+  }
 
   // Grabbing the stage: dragging around the centre turns it by the angle swept; dragging with the
   // right button (or Shift + left) translates it, the section point under the cursor staying
@@ -455,6 +463,9 @@ void App::browse(Browse what) {
   browse_for_ = what;
   if (what == Browse::Scene)
     browser_.open("Open a scene file", resolve_scene_path(scene_path_), {".json"});
+  else if (what == Browse::Exercise)
+    browser_.open("Open an exercise (<student>.pmexercise.json)", exercise_path_or(scene_path_),
+                  {".pmexercise.json"});
   else {
     const std::string current = section_path(scene_.sample.section);
     browser_.open("Open a thin section or EBSD map", current.empty() ? asset_dir() + "/sections/" : current,
@@ -468,6 +479,10 @@ void App::draw_file_browser() {
   if (browse_for_ == Browse::Scene) {
     scene_path_ = chosen;
     load_scene(chosen);
+    return;
+  }
+  if (browse_for_ == Browse::Exercise) {
+    open_exercise(chosen);
     return;
   }
   Scene s = scene_;
@@ -630,6 +645,12 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
       break;
     case Action::LoadScene:
       load_scene(scene_path_);
+      break;
+    case Action::ExerciseFocus:
+    case Action::ExerciseCheck:
+    case Action::ExerciseSave:
+    case Action::ExerciseReveal:
+      exercise_action(action);
       break;
   }
 }

@@ -26,6 +26,8 @@ struct ImDrawList;
 
 namespace pmsim::ui {
 
+struct ExerciseSession;  // ui/exercise_panel.h
+
 struct AppCounters {
   std::uint64_t frames = 0;    // frames built
   std::uint64_t uploads = 0;   // field texture uploads (new renderer snapshots)
@@ -62,7 +64,7 @@ class App {
   bool load_scene(const std::string& path);
   // The file dialog (ui/file_browser.h): a scene file to load, or a thin section / EBSD map to put
   // on the stage. The buttons "Browse..." in the Files and Sample tabs open it.
-  enum class Browse { Scene, Section };
+  enum class Browse { Scene, Section, Exercise };
   void browse(Browse what);
   bool browsing() const { return browser_.is_open(); }
   bool save_scene(const std::string& path);
@@ -97,6 +99,25 @@ class App {
   // sections; empty until the probe has answered, or after an error): what the student reads.
   std::string becke_text() const;
 
+  // --- a class exercise (ui/exercise_panel.cpp, ui/reveal_layer.cpp) ---------------------
+  // Opens a student file (<student>.pmexercise.json): its specimen becomes the scene (unless
+  // load_specimen is false: the command line has loaded it with its --set changes), its tasks the
+  // Exercise tab, the answers saved beside it are read back. False: banner shown.
+  bool open_exercise(const std::string& path, bool load_specimen = true);
+  // What the student types in the task's answer field (by task id); "" clears it.
+  bool exercise_answer(const std::string& task, const std::string& text);
+  // Grades the answers against the exercise made again from its template and seed (off the UI
+  // thread); false when no exercise is open or its template does not allow checking.
+  bool exercise_check();
+  bool exercise_checking() const;  // a Check in flight
+  // The reveal layer over the field (only after a Check).
+  bool exercise_reveal(bool on);
+  // The reveal layer is on and shows the current scene (no computation in flight).
+  bool exercise_reveal_ready() const;
+  bool exercise_save();                         // <student>.answers.json, atomically
+  bool exercise_goto(const std::string& task);  // the task's grain under the crosshair
+  const ExerciseSession* exercise() const { return exercise_.get(); }
+
  private:
   void pull_snapshot();
   void draw_controls(Scene& edit, bool& changed);
@@ -115,6 +136,14 @@ class App {
   void draw_grain_text(const GrainReport& g);
   void draw_grain_overlay(ImDrawList* draw, float cx, float cy, float len) const;
   void draw_help();
+  void draw_exercise_tab(Scene& edit, bool& changed);
+  void draw_exercise_task(int i, Scene& edit, bool& changed);
+  void draw_exercise_results();
+  void poll_exercise();
+  void draw_reveal(ImDrawList* draw) const;
+  void draw_task_markers(ImDrawList* draw) const;
+  void exercise_action(Action action);
+  std::string exercise_path_or(const std::string& fallback) const;
   void handle_shortcuts(Scene& edit, bool& changed);
   void apply_action(Action action, Scene& edit, bool& changed);
   void fail(const std::string& message);
@@ -154,6 +183,8 @@ class App {
   FileBrowser browser_;
   Browse browse_for_ = Browse::Scene;
   void draw_file_browser();
+
+  std::unique_ptr<ExerciseSession> exercise_;
 
   struct Teaching;  // cursor probe, chart and figure text (teaching_panel.cpp)
   std::unique_ptr<Teaching> teaching_;

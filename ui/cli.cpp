@@ -144,6 +144,9 @@ int pmsim_main(int argc, char** argv) {
   if (!log.empty()) std::cerr << log;
 
   int status = 0;
+  // A student's exercise file: its specimen is the scene loaded above; its tasks open in the
+  // Exercise tab (ui/exercise_panel.h).
+  if (scene_file.ends_with(".pmexercise.json") && !driver->app().open_exercise(scene_file, false)) status = 2;
   if (!script.empty()) {
     const ScriptResult r = run_script(*driver, script, o.script);
     if (!r.ok) {

@@ -16,6 +16,7 @@
 #include "ui/about.h"
 #include "ui/app.h"
 #include "ui/asset_lists.h"
+#include "ui/exercise_panel.h"
 
 namespace pmsim::ui {
 namespace {
@@ -111,6 +112,15 @@ void App::draw_controls(Scene& edit, bool& changed) {
     if (ImGui::BeginTabItem("Quality")) {
       draw_quality_tab(edit, changed);
       ImGui::EndTabItem();
+    }
+    if (exercise_) {
+      // Shown while an exercise is open; E (or opening one) brings it to the front.
+      const bool select = exercise_->select_tab;
+      exercise_->select_tab = false;
+      if (ImGui::BeginTabItem("Exercise", nullptr, select ? ImGuiTabItemFlags_SetSelected : 0)) {
+        draw_exercise_tab(edit, changed);
+        ImGui::EndTabItem();
+      }
     }
     if (ImGui::BeginTabItem("Files")) {
       draw_files_tab();
@@ -418,6 +428,9 @@ void App::draw_files_tab() {
   if (ImGui::Button("Save")) save_scene(scene_path_);
   ImGui::SameLine();
   if (ImGui::Button("Browse...##scene")) browse(Browse::Scene);
+  ImGui::SameLine();
+  if (ImGui::Button("Open exercise...")) browse(Browse::Exercise);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a student's <name>.pmexercise.json (pmsim-exercise make)");
   if (load) load_scene(scene_path_);
   static const std::vector<std::string> scenes = list_asset_stems("scenes", ".json");
   ImGui::TextUnformatted("Example scenes (assets/scenes)");

@@ -36,8 +36,10 @@ std::vector<DirectoryEntry> list_directory(const std::string& dir, const std::ve
     if (it->is_directory(type_ec)) {
       folders.push_back({name, true});
     } else if (it->is_regular_file(type_ec)) {
-      const std::string ext = lower(it->path().extension().string());
-      if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) files.push_back({name, false});
+      // By the end of the name, so that a double extension (.pmexercise.json) can be asked for.
+      const std::string lname = lower(name);
+      const auto ends_with = [&](const std::string& ext) { return lname.size() > ext.size() && lname.ends_with(ext); };
+      if (std::any_of(extensions.begin(), extensions.end(), ends_with)) files.push_back({name, false});
     }
   }
   if (ec) error = dir + ": " + ec.message();

@@ -1,9 +1,9 @@
 #pragma once
 // The app's file dialog: a modal ImGui window that walks the file system and offers the files a
-// control can open (scene .json; thin-section .json and EBSD maps .ctf/.ang). Dear ImGui has no
-// native dialog and the app must run under Xvfb and off-screen, so it is drawn like every other
-// window. The path field has the keyboard focus: typing a path and Enter opens it, as a native
-// dialog's location bar does.
+// control can open (scene .json; thin-section .json and EBSD maps .ctf/.ang; exercises
+// .pmexercise.json). Dear ImGui has no native dialog and the app must run under Xvfb and
+// off-screen, so it is drawn like every other window. The path field has the keyboard focus:
+// typing a path and Enter opens it, as a native dialog's location bar does.
 #include <string>
 #include <vector>
 
@@ -14,8 +14,9 @@ struct DirectoryEntry {
   bool is_directory = false;
 };
 
-// The sub-folders of `dir` (names without a leading dot), then its files whose extension is one
-// of `extensions` (lower case with the dot; case-insensitive match), each group sorted by name.
+// The sub-folders of `dir` (names without a leading dot), then its files whose name ends with one
+// of `extensions` (lower case with the dot, ".json" or ".pmexercise.json"; case-insensitive match),
+// each group sorted by name.
 // An unreadable folder gives an empty list and a message in `error`.
 std::vector<DirectoryEntry> list_directory(const std::string& dir, const std::vector<std::string>& extensions,
                                            std::string& error);

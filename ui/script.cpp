@@ -9,6 +9,7 @@
 
 #include "core/base/input_error.h"
 #include "core/base/units.h"  // kPi, radians, degrees
+#include "ui/exercise_panel.h"
 #include "ui/shortcuts.h"
 
 namespace pmsim::ui {
@@ -22,7 +23,7 @@ const std::map<std::string, Arity>& verbs() {
       {"set", {1, 1}},  {"key", {1, 1}},         {"move", {2, 2}},   {"click", {2, 2}},
       {"drag", {4, 5}}, {"turn-stage", {1, 2}}, {"pan", {2, 3}},  {"probe", {2, 2}},  {"type", {1, 1}},
       {"wait", {1, 2}}, {"screenshot", {1, 1}},  {"export", {1, 1}}, {"save", {1, 1}},
-      {"load", {1, 1}}, {"expect-error", {0, 0}}};
+      {"load", {1, 1}}, {"expect-error", {0, 0}}, {"exercise", {1, 3}}};
   return table;
 }
 
@@ -35,6 +36,22 @@ double number(const ScriptCommand& c, size_t i, const std::string& file) {
   } catch (const std::exception&) {
     throw InputError(file, "line " + std::to_string(c.line), c.args.at(i), "expected a number");
   }
+}
+
+// exercise open FILE | answer TASK [VALUE…] | check | reveal on|off | save | goto TASK | wait
+void check_exercise_command(const ScriptCommand& c, const std::string& file, const std::string& line) {
+  static const std::map<std::string, Arity> subs = {{"open", {1, 1}}, {"answer", {1, 2}}, {"check", {0, 0}},
+                                                    {"reveal", {1, 1}}, {"save", {0, 0}},   {"goto", {1, 1}},
+                                                    {"wait", {0, 0}}};
+  const std::string where = "line " + std::to_string(c.line);
+  const auto s = subs.find(c.args[0]);
+  if (s == subs.end())
+    throw InputError(file, where, c.args[0], "unknown exercise command (open, answer, check, reveal, save, goto, wait)");
+  const int n = static_cast<int>(c.args.size()) - 1;
+  if (n < s->second.min || n > s->second.max)
+    throw InputError(file, where, line, "wrong number of arguments for 'exercise " + c.args[0] + "'");
+  if (c.args[0] == "reveal" && c.args[1] != "on" && c.args[1] != "off")
+    throw InputError(file, where, c.args[1], "expected on or off");
 }
 
 }  // namespace
@@ -51,11 +68,27 @@ std::vector<ScriptCommand> parse_script(const std::string& text, const std::stri
     ScriptCommand c;
     c.line = number_of_line;
     if (!(words >> c.verb)) continue;
+    auto rest_of_line = [&words] {
+      std::string rest;
+      std::getline(words, rest);
+      const auto first = rest.find_first_not_of(' ');
+      const auto last = rest.find_last_not_of(" \t\r");
+      return first == std::string::npos ? std::string() : rest.substr(first, last - first + 1);
+    };
     if (c.verb == "type") {  // the rest of the line, as typed
       std::string rest;
       std::getline(words, rest);
       const auto first = rest.find_first_not_of(' ');
       c.args.push_back(first == std::string::npos ? "" : rest.substr(first));
+    } else if (c.verb == "exercise") {  // exercise answer TASK the rest of the line
+      std::string sub, task;
+      if (words >> sub) c.args.push_back(sub);
+      if (sub == "answer" && words >> task) {
+        c.args.push_back(task);
+        c.args.push_back(rest_of_line());
+      } else {
+        for (std::string w; words >> w;) c.args.push_back(w);
+      }
     } else {
       for (std::string w; words >> w;) c.args.push_back(w);
     }
@@ -71,6 +104,7 @@ std::vector<ScriptCommand> parse_script(const std::string& text, const std::stri
       if (!parse_key_chord(c.args[0], key, shift, ctrl))
         throw InputError(file, where, c.args[0], "unknown key (e.g. Left, shift+Right, ctrl+s, C)");
     }
+    if (c.verb == "exercise") check_exercise_command(c, file, line);
     if (c.verb == "set" && c.args[0].find('=') == std::string::npos)
       throw InputError(file, where, c.args[0], "expected key=value");
     if (c.verb == "wait" && c.args[0] != "converged") number(c, 0, file);
@@ -108,6 +142,55 @@ bool settle(UiDriver& driver, double timeout_s, int* frames) {
     driver.app().wait_rendered(0.05);  // let the workers have the cores between frames
   }
 }
+
+namespace {
+
+// Frames until `done` (a Check graded, the reveal layer computed for the scene on screen).
+template <typename Step, typename Done>
+bool frames_until(UiDriver& driver, Step& step, Done done, double timeout_s) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!done()) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s) return false;
+    driver.app().wait_rendered(0.01);
+    step(1);
+  }
+  return true;
+}
+
+template <typename Step>
+void run_exercise_command(UiDriver& driver, const ScriptCommand& c, const std::string& file, Step& step,
+                          ScriptResult& result) {
+  App& app = driver.app();
+  const std::string& sub = c.args[0];
+  bool waiting = false;
+  if (sub == "open") {
+    app.open_exercise(c.args[1]);
+  } else if (sub == "answer") {
+    app.exercise_answer(c.args[1], c.args.size() > 2 ? c.args[2] : "");
+  } else if (sub == "check") {
+    waiting = app.exercise_check();
+  } else if (sub == "reveal") {
+    waiting = app.exercise_reveal(c.args[1] == "on") && c.args[1] == "on";
+  } else if (sub == "save") {
+    app.exercise_save();
+  } else if (sub == "goto") {
+    app.exercise_goto(c.args[1]);
+  } else if (sub == "wait") {
+    waiting = true;
+  }
+  step(1);
+  if (!waiting) return;
+  const auto* ex = app.exercise();
+  const bool reveal = ex && ex->reveal;
+  if (!frames_until(driver, step, [&] { return !app.exercise_checking() && (!reveal || app.exercise_reveal_ready()); }, 300.0)) {
+    result.ok = false;
+    result.error = file + ": line " + std::to_string(c.line) + ": the exercise's " + (app.exercise_checking() ? "Check" : "reveal layer") +
+                   " took longer than 300 s";
+  }
+  step(1);  // the frame that draws it
+}
+
+}  // namespace
 
 ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& commands,
                         const std::string& file) {
@@ -228,6 +311,9 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
     } else if (c.verb == "load") {
       app.load_scene(a[0]);
       step(1);
+    } else if (c.verb == "exercise") {
+      run_exercise_command(driver, c, file, step, result);
+      if (!result.ok) return result;
     } else if (c.verb == "expect-error") {
       continue;  // checked with the command before it
     }

@@ -19,6 +19,13 @@
 //   export FILE            the field image (.png sRGB, .exr/.tif linear), scene in the metadata
 //   save FILE / load FILE  scene files
 //   expect-error           the previous command must have raised the error banner
+//   exercise open FILE     open a student's <name>.pmexercise.json (its specimen and Exercise tab)
+//   exercise answer TASK VALUE   type VALUE (the rest of the line; none: clear) as TASK's answer
+//   exercise check         Check (grade at once, when the exercise allows); waits for the grades
+//   exercise reveal on|off the reveal layer (after check); `on` waits until it shows the scene
+//   exercise save          write <name>.answers.json beside the exercise file (atomically)
+//   exercise goto TASK     put TASK's grain under the crosshair
+//   exercise wait          frames until the Check and the reveal layer are done
 //
 // A command that raises the error banner stops the script (exit 2) unless the next line is
 // `expect-error`; the scene stays the last good one either way.

@@ -62,6 +62,11 @@ const std::vector<Shortcut>& shortcuts() {
       {GLFW_KEY_F3, false, false, Action::ExportWindow, "screenshot of the whole window"},
       {GLFW_KEY_S, false, true, Action::SaveScene, "save the scene file (path in Files)"},
       {GLFW_KEY_O, false, true, Action::LoadScene, "load the scene file (path in Files)"},
+      {GLFW_KEY_E, false, false, Action::ExerciseFocus,
+       "exercise: to the Exercise tab's first empty answer (Tab / Shift+Tab: next / previous answer)"},
+      {GLFW_KEY_F4, false, false, Action::ExerciseCheck, "exercise: Check the answers (when the exercise allows)"},
+      {GLFW_KEY_E, false, true, Action::ExerciseSave, "exercise: save the answers (<student>.answers.json)"},
+      {GLFW_KEY_R, false, false, Action::ExerciseReveal, "exercise: reveal layer on / off (after Check)"},
   };
   return table;
 }

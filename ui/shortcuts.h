@@ -42,6 +42,10 @@ enum class Action {
   ExportWindow,
   SaveScene,
   LoadScene,
+  ExerciseFocus,   // a class exercise is open (ui/exercise_panel.h): the Exercise tab, first answer
+  ExerciseCheck,
+  ExerciseSave,
+  ExerciseReveal,
 };
 
 struct Shortcut {
