@@ -82,13 +82,13 @@ void App::draw_reveal(ImDrawList* draw) const {
   const RevealGeometry& geo = *s.geometry;
   const Layout& l = layout_;
   if (!geo.figure.empty()) {
-    // A crystal plate: no grains, the figure's truth in words.
-    ImGui::SetCursorScreenPos(ImVec2(l.field.x + 0.12f * l.field.w, l.field.y + 0.06f * l.field.h));
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.92f, 0.35f, 1));
-    ImGui::PushTextWrapPos(l.field.x + 0.88f * l.field.w);
-    ImGui::TextWrapped("Ground truth: %s", geo.figure.c_str());
-    ImGui::PopTextWrapPos();
-    ImGui::PopStyleColor();
+    // A crystal plate: no grains, the figure's truth in words, on a dark band across the field's top.
+    const std::string text = "Ground truth: " + geo.figure;
+    const float width = 0.76f * l.field.w;
+    const ImVec2 at(l.field.x + 0.12f * l.field.w, l.field.y + 0.07f * l.field.h);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, width);
+    draw->AddRectFilled(ImVec2(at.x - 6, at.y - 4), ImVec2(at.x + width + 6, at.y + size.y + 4), IM_COL32(0, 0, 0, 190), 4.0f);
+    draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(255, 235, 90, 255), text.c_str(), nullptr, width);
     return;
   }
   auto screen = [&](double fx, double fy) {
