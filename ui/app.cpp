@@ -25,6 +25,7 @@
 #include "ui/asset_lists.h"
 #include "ui/exercise_panel.h"
 #include "ui/teaching.h"
+#include "ui/ui_scale.h"
 
 namespace pmsim::ui {
 namespace {
@@ -74,6 +75,8 @@ App::App(const Scene& scene, int renderer_threads)
     : scene_(scene),
       feed_(std::make_unique<RenderFeed>(renderer_threads)),
       teaching_(std::make_unique<Teaching>()) {
+  // The style the driver set up, kept unscaled so that every ui.scale starts from it.
+  if (ImGui::GetCurrentContext()) base_style_ = std::make_unique<ImGuiStyle>(ImGui::GetStyle());
   layout_ = compute_layout(window_w_, window_h_);
   try {
     validate_scene(scene_);
@@ -94,7 +97,22 @@ App::~App() { feed_.reset(); }
 void App::set_window_size(int width, int height) {
   window_w_ = width;
   window_h_ = height;
-  layout_ = compute_layout(width, height);
+  layout_ = compute_layout(width, height, ui_scale());
+}
+
+void App::set_content_scale(float scale) {
+  content_scale_ = std::clamp(scale, float(kUiScaleMin), float(kUiScaleMax));
+  apply_scale();
+}
+
+void App::set_ui_scale(std::optional<double> scale) {
+  ui_scale_ = scale ? std::optional<float>(float(*scale)) : std::nullopt;
+  apply_scale();
+}
+
+void App::apply_scale() {
+  if (base_style_ && ImGui::GetCurrentContext()) apply_ui_scale(*base_style_, ui_scale());
+  layout_ = compute_layout(window_w_, window_h_, ui_scale());
 }
 
 bool App::commit(const Scene& candidate) {
@@ -136,6 +154,19 @@ bool App::commit(const Scene& candidate) {
 }
 
 bool App::set(std::string_view assignment) {
+  if (is_ui_setting(assignment)) {
+    const auto eq = assignment.find('=');
+    const std::string_view key = assignment.substr(0, eq), value = eq == std::string_view::npos ? "" : assignment.substr(eq + 1);
+    try {
+      if (key != "ui.scale") throw InputError("", std::string(key), std::string(value), "unknown key (the UI's keys: ui.scale)");
+      set_ui_scale(parse_ui_scale(value));
+      return true;
+    } catch (const std::exception& e) {
+      fail(e.what());
+      ++counters_.rejected;
+      return false;
+    }
+  }
   Scene candidate = scene_;
   try {
     apply_setting(candidate, assignment);

@@ -23,6 +23,7 @@
 #include "ui/shortcuts.h"
 
 struct ImDrawList;
+struct ImGuiStyle;
 
 namespace pmsim::ui {
 
@@ -56,10 +57,16 @@ class App {
   void frame();
   void set_window_size(int width, int height);
   void set_measured_fps(double fps) { counters_.fps = fps; }
+  // ui.scale (ui/ui_scale.h): the monitor's content scale (what "auto" follows; the window driver
+  // reports it), the setting (nullopt: auto) and the scale in effect.
+  void set_content_scale(float scale);
+  void set_ui_scale(std::optional<double> scale);
+  float ui_scale() const { return ui_scale_.value_or(content_scale_); }
+  std::optional<double> ui_scale_setting() const { return ui_scale_; }
 
   // --- the one door for state changes -----------------------------------------------------
   bool commit(const Scene& candidate);    // false: banner shown, last good scene kept
-  bool set(std::string_view assignment);  // "key=value" (scene keys), through commit()
+  bool set(std::string_view assignment);  // "key=value": scene keys through commit(), and ui.scale
   void perform(Action action);            // what a shortcut does
   bool load_scene(const std::string& path);
   // The file dialog (ui/file_browser.h): a scene file to load, or a thin section / EBSD map to put
@@ -159,6 +166,11 @@ class App {
   LinearTexture field_texture_;
   Layout layout_;
   int window_w_ = 1280, window_h_ = 800;
+  float content_scale_ = 1.0f;
+  std::optional<float> ui_scale_;
+  float ui_scale_edit_ = 0.0f;  // the Quality tab's slider while it is dragged
+  std::unique_ptr<ImGuiStyle> base_style_;  // the unscaled style, as the driver set it up
+  void apply_scale();
   AppCounters counters_;
 
   std::string error_;   // banner text; "" = no banner

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "ui/asset_lists.h"
 #include "ui/headless_driver.h"
 #include "ui/script.h"
+#include "ui/ui_scale.h"
 #include "ui/window_driver.h"
 
 namespace pmsim::ui {
@@ -55,7 +57,7 @@ Options parse(int argc, char** argv) {
   app.add_option("SCENE", o.scene_file, "scene file (JSON)")->type_name("FILE.json");
   app.add_flag("--headless", o.headless,
                "draw the window off-screen (EGL surfaceless, else OSMesa), no display needed");
-  cli::add_repeatable(app, "--set", o.sets, "change a scene key (repeatable; keys as in pmsim-render)")
+  cli::add_repeatable(app, "--set", o.sets, "change a scene key (repeatable; keys as in pmsim-render), or ui.scale=auto|0.5…3 (the interface's size)")
       ->type_name("key=value");
   app.add_option("--frames", frames,
                  "run N frames (windowed: then quit; headless: before settling, default 3)")
@@ -108,6 +110,7 @@ int pmsim_main(int argc, char** argv) {
   // All input is checked before any window opens: bad input is exit 2 with nothing written.
   Scene scene;
   std::vector<ScriptCommand> script;
+  std::optional<double> ui_scale;  // --set ui.scale (nullopt: auto)
   // The built-in Scene{} is a plate at extinction (a black field); a first look should show
   // something: the thin section pmsim-render renders by default.
   std::string scene_file = o.scene_file;
@@ -122,7 +125,20 @@ int pmsim_main(int argc, char** argv) {
       scene = load_scene_file(scene_file, &warnings);
       for (const auto& w : warnings) std::cerr << "pmsim: warning: " << w << "\n";
     }
-    apply_settings(scene, o.sets);
+    // ui.* keys set the interface, not the scene: checked here, applied once the app exists.
+    std::vector<std::string> scene_sets;
+    for (const std::string& a : o.sets) {
+      if (!is_ui_setting(a)) {
+        scene_sets.push_back(a);
+        continue;
+      }
+      const auto eq = a.find('=');
+      if (a.substr(0, eq) != "ui.scale")
+        throw InputError("", a.substr(0, eq), eq == std::string::npos ? "" : a.substr(eq + 1),
+                         "unknown key (the UI's keys: ui.scale)");
+      ui_scale = parse_ui_scale(eq == std::string::npos ? "" : a.substr(eq + 1));
+    }
+    apply_settings(scene, scene_sets);
     validate_scene(scene, scene_file);
     if (!o.script.empty()) script = load_script(o.script);
   } catch (const InputError& e) {
@@ -142,6 +158,7 @@ int pmsim_main(int argc, char** argv) {
     return 1;
   }
   if (!log.empty()) std::cerr << log;
+  if (ui_scale) driver->app().set_ui_scale(ui_scale);
 
   int status = 0;
   // A student's exercise file: its specimen is the scene loaded above; its tasks open in the

@@ -15,6 +15,7 @@
 #include "core/specimen/grain_mount_render.h"
 #include "ui/about.h"
 #include "ui/app.h"
+#include "ui/ui_scale.h"
 #include "ui/asset_lists.h"
 #include "ui/exercise_panel.h"
 
@@ -385,6 +386,16 @@ void App::draw_quality_tab(Scene& edit, bool& changed) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("render.vision: the field and PNG exports as an observer with that colour-vision\n"
                       "deficiency sees them (Machado, Oliveira & Fernandes 2009), for teachers");
+  // ui.scale: the interface's size, not the scene's (no restart).
+  bool automatic = !ui_scale_setting().has_value();
+  if (ImGui::Checkbox("Auto UI scale", &automatic)) set_ui_scale(automatic ? std::nullopt : std::optional<double>(ui_scale()));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("ui.scale=auto: follow the monitor's content scale");
+  if (!automatic) {
+    // Applied on release: rescaling under the dragged slider would move it away from the mouse.
+    if (!ImGui::IsAnyItemActive() || ui_scale_edit_ <= 0.0f) ui_scale_edit_ = ui_scale();
+    ImGui::SliderFloat("UI scale", &ui_scale_edit_, float(kUiScaleMin), float(kUiScaleMax), "%.2f");
+    if (ImGui::IsItemDeactivatedAfterEdit()) set_ui_scale(ui_scale_edit_);
+  }
   static const int kSizes[] = {128, 256, 384, 512, 768};
   if (ImGui::BeginCombo("Image size", (std::to_string(r.width) + " x " + std::to_string(r.height)).c_str())) {
     for (int s : kSizes)

@@ -20,7 +20,8 @@ struct Layout {
   float field_radius() const { return field.w / 2; }
 };
 
-Layout compute_layout(int window_width, int window_height);
+// `ui_scale` (ui_scale.h) widens the side panels and the status line with the text they hold.
+Layout compute_layout(int window_width, int window_height, float ui_scale = 1.0f);
 
 // Background colours (sRGB-encoded, as ImGui colours are). The drivers clear the framebuffer to
 // them and the windows draw no background of their own: with software OpenGL a clear is a

@@ -68,6 +68,14 @@ bool WindowDriver::begin_frame() {
   glfwPollEvents();
   if (glfwWindowShouldClose(window_)) return false;
   glfwGetFramebufferSize(window_, &fb_width_, &fb_height_);
+  // The monitor's content scale (HiDPI, a projector's setting), what ui.scale=auto follows; it
+  // changes when the window moves to another monitor.
+  float xs = 1.0f, ys = 1.0f;
+  glfwGetWindowContentScale(window_, &xs, &ys);
+  if (xs > 0.0f && xs != content_scale_) {
+    content_scale_ = xs;
+    app_->set_content_scale(xs);
+  }
   int w = 0, h = 0;
   glfwGetWindowSize(window_, &w, &h);
   if (w > 0 && h > 0 && (w != width_ || h != height_)) {

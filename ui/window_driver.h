@@ -28,6 +28,7 @@ class WindowDriver : public UiDriver {
   WindowDriver() = default;
   GLFWwindow* window_ = nullptr;
   int fb_width_ = 0, fb_height_ = 0;
+  float content_scale_ = 1.0f;  // as last reported to the app
 };
 
 }  // namespace pmsim::ui
