@@ -451,8 +451,6 @@ void cubic4(const float* v, int w, int h, const Cell4& c, v4 out[4]) {
   }
 }
 
-using v2d = double __attribute__((vector_size(16)));
-
 // Rows [y0, y1) of the image, four pixels at a time: each pixel's grid value (cubic, or the point
 // itself when the grid is the pixels) and colour nodes' (bilinear), their XYZ and linear sRGB.
 template <int Stride>
@@ -460,13 +458,20 @@ void compose_rows(const SpecimenResponse& r, const FieldMap& map, const FrameFie
                   RenderImage& img) {
   const bool mono = r.single_wavelength_nm > 0.0;
   const double per_node = 1.0 / r.chroma_period;  // exact for the period 4 (and 2, 1)
-  // XYZ → linear sRGB as its matrix's columns, applied in glm's order (the same numbers).
+  // XYZ → linear sRGB as its matrix's columns (in float: the image's own precision).
   const glm::dvec3 m0 = xyz_to_linear_srgb({1.0, 0.0, 0.0}), m1 = xyz_to_linear_srgb({0.0, 1.0, 0.0}),
                    m2 = xyz_to_linear_srgb({0.0, 0.0, 1.0});
   const float* grid = f.grid.data();
   const float* nodes = f.nodes.empty() ? nullptr : f.nodes.data();
   const int w = map.w;
-  const v2d zero{0.0, 0.0};
+  const float scale[3] = {float(f.grid_scale.x), float(f.grid_scale.y), float(f.grid_scale.z)};
+  const float inv_white_y = float(1.0 / r.white.y);
+  float mf[3][3];
+  for (int k = 0; k < 3; ++k) {
+    mf[0][k] = float(m0[k]);
+    mf[1][k] = float(m1[k]);
+    mf[2][k] = float(m2[k]);
+  }
   for (int y = y0; y < y1; ++y)
     for (int x = 0; x < w; x += 4) {
       const int np = std::min(4, w - x);  // the last lanes of a row's end repeat its last pixel
@@ -496,24 +501,19 @@ void compose_rows(const SpecimenResponse& r, const FieldMap& map, const FrameFie
         bilinear4(nodes, r.cnx, cells(nx, ny, r.cnx, r.cny, std::max(r.cnx - 2, 0), std::max(r.cny - 2, 0)), n);
         transpose(n);
       }
-      for (int half = 0; half < 2; ++half) {  // two pixels a step in double
-        v2d xyz[3];
+      v4 xyz[3], rgb[3];  // lanes: the four pixels
+      const v4 zero4{};
+      for (int k = 0; k < 3; ++k) {
+        const v4 sum = (Stride == 1 ? scale[k] * g[0] : g[k]) + n[k];
+        xyz[k] = zero4 < sum ? sum : zero4;  // std::max(0, sum)
+      }
+      for (int k = 0; k < 3; ++k)
+        rgb[k] = mono ? xyz[1] * inv_white_y : mf[0][k] * xyz[0] + mf[1][k] * xyz[1] + mf[2][k] * xyz[2];
+      for (int p = 0; p < np; ++p) {
+        const std::size_t at = (pix + std::size_t(p)) * 3;
         for (int k = 0; k < 3; ++k) {
-          const v4& gk = g[Stride == 1 ? 0 : k];
-          const v2d gd = {double(gk[2 * half]), double(gk[2 * half + 1])};
-          const v2d nd = {double(n[k][2 * half]), double(n[k][2 * half + 1])};
-          const v2d sum = (Stride == 1 ? f.grid_scale[k] * gd : gd) + nd;
-          xyz[k] = zero < sum ? sum : zero;  // std::max(0.0, sum)
-        }
-        v2d rgb[3];
-        for (int k = 0; k < 3; ++k)
-          rgb[k] = mono ? xyz[1] / r.white.y : m0[k] * xyz[0] + m1[k] * xyz[1] + m2[k] * xyz[2];
-        for (int q = 0; q < 2 && 2 * half + q < np; ++q) {
-          const std::size_t at = (pix + std::size_t(2 * half + q)) * 3;
-          for (int k = 0; k < 3; ++k) {
-            img.xyz[at + std::size_t(k)] = float(xyz[k][q]);
-            img.rgb[at + std::size_t(k)] = float(rgb[k][q]);
-          }
+          img.xyz[at + std::size_t(k)] = xyz[k][p];
+          img.rgb[at + std::size_t(k)] = rgb[k][p];
         }
       }
     }
