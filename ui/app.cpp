@@ -526,8 +526,16 @@ void App::draw_file_browser() {
 void App::handle_shortcuts(Scene& edit, bool& changed) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput) return;  // typing a path or a number is not a command
+  // Keyboard navigation (F6) owns the keys ImGui navigates with; the other shortcuts stay.
+  const bool navigating = (io.ConfigFlags & ImGuiConfigFlags_NavEnableKeyboard) != 0;
+  const auto nav_key = [](int key) {
+    return key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT || key == GLFW_KEY_UP || key == GLFW_KEY_DOWN ||
+           key == GLFW_KEY_SPACE || key == GLFW_KEY_ENTER || key == GLFW_KEY_ESCAPE || key == GLFW_KEY_TAB ||
+           key == GLFW_KEY_PAGE_UP || key == GLFW_KEY_PAGE_DOWN || key == GLFW_KEY_HOME || key == GLFW_KEY_END;
+  };
   for (const Shortcut& s : shortcuts()) {
     if (s.shift != io.KeyShift || s.ctrl != io.KeyCtrl) continue;
+    if (navigating && nav_key(s.key)) continue;
     // Turning keys repeat while held, toggles do not (holding A must not flicker the analyzer).
     const bool repeats =
         s.action <= Action::AnalyzerDown || s.action == Action::WedgeIn || s.action == Action::WedgeOut ||
@@ -683,6 +691,16 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
     case Action::ExerciseReveal:
       exercise_action(action);
       break;
+    case Action::ToggleKeyboardNav: {
+      ImGuiIO& io = ImGui::GetIO();
+      io.ConfigFlags ^= ImGuiConfigFlags_NavEnableKeyboard;
+      const bool on = (io.ConfigFlags & ImGuiConfigFlags_NavEnableKeyboard) != 0;
+      // Focus the controls so that the first arrow lands on a widget.
+      if (on) ImGui::SetWindowFocus("Microscope");
+      note(on ? "keyboard navigation on (F6 to leave): arrows move, Space or Enter acts, Ctrl+Tab changes panel"
+              : "keyboard navigation off: arrows turn the stage and the polarizer again");
+      break;
+    }
   }
 }
 

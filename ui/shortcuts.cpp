@@ -19,6 +19,7 @@ const std::vector<std::pair<const char*, int>>& named_keys() {
       {"Enter", GLFW_KEY_ENTER}, {"Escape", GLFW_KEY_ESCAPE},  {"Tab", GLFW_KEY_TAB},
       {"Comma", GLFW_KEY_COMMA}, {"Period", GLFW_KEY_PERIOD},  {"F1", GLFW_KEY_F1},
       {"F2", GLFW_KEY_F2},       {"F3", GLFW_KEY_F3},          {"F4", GLFW_KEY_F4},
+      {"F6", GLFW_KEY_F6},
   };
   return keys;
 }
@@ -67,6 +68,9 @@ const std::vector<Shortcut>& shortcuts() {
       {GLFW_KEY_F4, false, false, Action::ExerciseCheck, "exercise: Check the answers (when the exercise allows)"},
       {GLFW_KEY_E, false, true, Action::ExerciseSave, "exercise: save the answers (<student>.answers.json)"},
       {GLFW_KEY_R, false, false, Action::ExerciseReveal, "exercise: reveal layer on / off (after Check)"},
+      {GLFW_KEY_F6, false, false, Action::ToggleKeyboardNav,
+       "keyboard navigation of the panels on / off: arrows move between controls, Space or Enter acts, "
+       "Ctrl+Tab changes panel (the arrow and Space shortcuts wait meanwhile)"},
   };
   return table;
 }

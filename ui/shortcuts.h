@@ -46,6 +46,7 @@ enum class Action {
   ExerciseCheck,
   ExerciseSave,
   ExerciseReveal,
+  ToggleKeyboardNav,  // the panels' widgets by keyboard: arrows move, Space activates
 };
 
 struct Shortcut {
