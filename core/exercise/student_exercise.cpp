@@ -313,7 +313,10 @@ void grain_mount_exercise(const ExerciseTemplate& tp, StudentExercise& ex) {
   Scene probe = s;
   probe.render.width = probe.render.height = 96;
   probe.stage = {};
-  const auto [label, stage_mm] = largest_fragment(*grain_mount_specimen_cached(probe), probe);
+  // Not a structured binding: clang 14 (the sanitizer build) cannot capture one in a lambda.
+  const std::pair<int, std::array<double, 2>> largest = largest_fragment(*grain_mount_specimen_cached(probe), probe);
+  const int label = largest.first;
+  const std::array<double, 2> stage_mm = largest.second;
   s.stage.x_mm = stage_mm[0], s.stage.y_mm = stage_mm[1];
   probe.stage = s.stage;
   // n′ of the fragment does not depend on the liquid: read it once, draw the liquid against it,
