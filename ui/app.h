@@ -6,6 +6,7 @@
 // latest snapshot into a texture and draws.
 #include <cstdint>
 #include <future>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/exercise/identify.h"
 #include "core/microscope/grain_report.h"
 #include "core/microscope/scene.h"
 #include "core/render/progressive_renderer.h"
@@ -125,6 +127,17 @@ class App {
   bool exercise_goto(const std::string& task);  // the task's grain under the crosshair
   const ExerciseSession* exercise() const { return exercise_.get(); }
 
+  // --- the Identify tab (ui/identify_panel.cpp): pmsim-exercise identify in the app --------
+  // An observation as `pmsim-exercise identify --KEY VALUE` takes it (keys: identify_keys();
+  // core/exercise/identify.h parse_observation); "" clears it. False (banner shown, the
+  // observation unchanged) for an unknown key or a value core refuses. Brings the tab to the front.
+  bool identify_observation(const std::string& key, const std::string& value);
+  void identify_clear();  // every observation
+  // The library minerals consistent with the observations given (every one when none is), as
+  // core's identify() returns them, and the observations as typed (key → text).
+  const std::vector<Candidate>& identify_candidates();
+  const std::map<std::string, std::string>& identify_observations() const { return identify_.values; }
+
  private:
   void pull_snapshot();
   void draw_controls(Scene& edit, bool& changed);
@@ -144,6 +157,8 @@ class App {
   void draw_grain_overlay(ImDrawList* draw, float cx, float cy, float len) const;
   void draw_help();
   void draw_exercise_tab(Scene& edit, bool& changed);
+  void draw_identify_tab();
+  void update_identify();
   void draw_exercise_task(int i, Scene& edit, bool& changed);
   void draw_exercise_results();
   void poll_exercise();
@@ -198,9 +213,21 @@ class App {
 
   std::unique_ptr<ExerciseSession> exercise_;
 
+  struct IdentifyState {
+    std::map<std::string, std::string> values;  // key → the text typed or the word chosen
+    std::map<std::string, std::string> errors;  // key → why core refuses the text (left out until fixed)
+    std::vector<Candidate> candidates;
+    bool stale = true;        // values changed since `candidates` were computed
+    bool select_tab = false;  // bring the Identify tab to the front on the next frame
+  };
+  IdentifyState identify_;
+
   struct Teaching;  // cursor probe, chart and figure text (teaching_panel.cpp)
   std::unique_ptr<Teaching> teaching_;
 };
+
+// The observation keys of pmsim-exercise identify (and the script's `identify KEY VALUE`).
+const std::vector<std::string>& identify_keys();
 
 // Wrap an angle into [0, 360).
 double wrap_deg(double angle_deg);

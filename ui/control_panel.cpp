@@ -127,6 +127,15 @@ void App::draw_controls(Scene& edit, bool& changed) {
       draw_files_tab();
       ImGui::EndTabItem();
     }
+    {
+      // The determinative aid (ui/identify_panel.cpp); a script's `identify` brings it to the front.
+      const bool select = identify_.select_tab;
+      identify_.select_tab = false;
+      if (ImGui::BeginTabItem("Identify", nullptr, select ? ImGuiTabItemFlags_SetSelected : 0)) {
+        draw_identify_tab();
+        ImGui::EndTabItem();
+      }
+    }
     if (ImGui::BeginTabItem("About")) {
       draw_about_tab();
       ImGui::EndTabItem();

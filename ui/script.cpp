@@ -1,5 +1,6 @@
 #include "ui/script.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -23,7 +24,7 @@ const std::map<std::string, Arity>& verbs() {
       {"set", {1, 1}},  {"key", {1, 1}},         {"move", {2, 2}},   {"click", {2, 2}},
       {"drag", {4, 5}}, {"turn-stage", {1, 2}}, {"pan", {2, 3}},  {"probe", {2, 2}},  {"type", {1, 1}},
       {"wait", {1, 2}}, {"screenshot", {1, 1}},  {"export", {1, 1}}, {"save", {1, 1}},
-      {"load", {1, 1}}, {"expect-error", {0, 0}}, {"exercise", {1, 3}}};
+      {"load", {1, 1}}, {"expect-error", {0, 0}}, {"exercise", {1, 3}}, {"identify", {1, 2}}};
   return table;
 }
 
@@ -52,6 +53,21 @@ void check_exercise_command(const ScriptCommand& c, const std::string& file, con
     throw InputError(file, where, line, "wrong number of arguments for 'exercise " + c.args[0] + "'");
   if (c.args[0] == "reveal" && c.args[1] != "on" && c.args[1] != "off")
     throw InputError(file, where, c.args[1], "expected on or off");
+}
+
+// identify clear | identify KEY [VALUE…] (the key checked here, the value by core when it runs)
+void check_identify_command(const ScriptCommand& c, const std::string& file, const std::string& line) {
+  const std::string where = "line " + std::to_string(c.line);
+  if (c.args[0] == "clear") {
+    if (c.args.size() > 1) throw InputError(file, where, line, "'identify clear' takes no argument");
+    return;
+  }
+  const auto& keys = identify_keys();
+  if (std::find(keys.begin(), keys.end(), c.args[0]) == keys.end()) {
+    std::string list;
+    for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+    throw InputError(file, where, c.args[0], "not an observation (clear, " + list + ")");
+  }
 }
 
 }  // namespace
@@ -89,6 +105,10 @@ std::vector<ScriptCommand> parse_script(const std::string& text, const std::stri
       } else {
         for (std::string w; words >> w;) c.args.push_back(w);
       }
+    } else if (c.verb == "identify") {  // identify KEY the rest of the line (none: clear KEY)
+      std::string key;
+      if (words >> key) c.args.push_back(key);
+      if (const std::string value = rest_of_line(); !value.empty()) c.args.push_back(value);
     } else {
       for (std::string w; words >> w;) c.args.push_back(w);
     }
@@ -105,6 +125,7 @@ std::vector<ScriptCommand> parse_script(const std::string& text, const std::stri
         throw InputError(file, where, c.args[0], "unknown key (e.g. Left, shift+Right, ctrl+s, C)");
     }
     if (c.verb == "exercise") check_exercise_command(c, file, line);
+    if (c.verb == "identify") check_identify_command(c, file, line);
     if (c.verb == "set" && c.args[0].find('=') == std::string::npos)
       throw InputError(file, where, c.args[0], "expected key=value");
     if (c.verb == "wait" && c.args[0] != "converged") number(c, 0, file);
@@ -314,6 +335,12 @@ ScriptResult run_script(UiDriver& driver, const std::vector<ScriptCommand>& comm
     } else if (c.verb == "exercise") {
       run_exercise_command(driver, c, file, step, result);
       if (!result.ok) return result;
+    } else if (c.verb == "identify") {
+      if (a[0] == "clear")
+        app.identify_clear();
+      else
+        app.identify_observation(a[0], a.size() > 1 ? a[1] : "");
+      step(2);  // the tab comes to the front, then shows the candidates
     } else if (c.verb == "expect-error") {
       continue;  // checked with the command before it
     }

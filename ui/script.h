@@ -26,6 +26,9 @@
 //   exercise save          write <name>.answers.json beside the exercise file (atomically)
 //   exercise goto TASK     put TASK's grain under the crosshair
 //   exercise wait          frames until the Check and the reveal layer are done
+//   identify KEY VALUE     an observation in the Identify tab, as pmsim-exercise identify --KEY VALUE
+//                          (VALUE: the rest of the line; none clears KEY); brings the tab to the front
+//   identify clear         every observation cleared
 //
 // A command that raises the error banner stops the script (exit 2) unless the next line is
 // `expect-error`; the scene stays the last good one either way.

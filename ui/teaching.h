@@ -11,6 +11,7 @@
 #include "core/microscope/figure_info.h"
 #include "core/microscope/grain_report.h"
 #include "core/microscope/pixel_probe.h"
+#include "core/microscope/scene.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/specimen/becke_probe.h"
 #include "core/specimen/section_becke_probe.h"
@@ -19,6 +20,12 @@
 #include "ui/app.h"
 
 namespace pmsim::ui {
+
+// The compensator test read by brightness for a grain of retardation Γ (the teaching panel's line,
+// issue 23, for a student who cannot tell interference colours apart): core's brightness_test
+// (core/render/brightness_test.h) for the mica or the gypsum plate, as
+// "Mica λ/4 at 45°: Y 0.39 → 0.98 adding, 0.03 subtracting: brighter on addition".
+std::string brightness_line(double retardation_nm, Compensator accessory, Illuminant illuminant = Illuminant::D65);
 
 struct App::Teaching {
   // The probe runs off the UI thread (the first probe of a thin section loads its map).

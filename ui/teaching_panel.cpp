@@ -8,6 +8,7 @@
 
 #include "core/base/units.h"
 #include "core/microscope/grain_probe.h"
+#include "core/render/brightness_test.h"
 #include "core/render/michel_levy_chart.h"
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_becke_probe.h"
@@ -161,6 +162,15 @@ void App::draw_chart() {
   ImGui::PopStyleVar();
 }
 
+std::string brightness_line(double retardation_nm, Compensator accessory, Illuminant illuminant) {
+  const BrightnessTest t = brightness_test(retardation_nm, accessory, illuminant);
+  char b[160];
+  std::snprintf(b, sizeof b, "%s at 45°: Y %.2f → %.2f adding, %.2f subtracting: %s",
+                accessory == Compensator::Mica ? "Mica λ/4" : "Gypsum λ", t.y_alone, t.y_addition,
+                t.y_subtraction, t.reading.c_str());
+  return b;
+}
+
 void App::draw_grain_text(const GrainReport& g) {
   // What a student measures on the grain: all computed by core (report_grain) from the grain's
   // indicatrix and crystallography at the current stage angle.
@@ -193,6 +203,11 @@ void App::draw_grain_text(const GrainReport& g) {
   if (g.twin)
     ImGui::Text("Twinned       %s law (twin extinct at %.1f deg)", g.twin->law.c_str(),
                 g.twin->extinction_stage_deg.empty() ? 0.0 : g.twin->extinction_stage_deg[0]);
+  // The compensator test by brightness (a dichromat reads Y as well as anyone): at the grain's
+  // own retardation, which way the field's brightness goes with each plate.
+  ImGui::TextWrapped("Compensator by brightness (grain at 45°; adding: its slow ∥ the plate's)");
+  for (const Compensator c : {Compensator::Mica, Compensator::Gypsum})
+    ImGui::TextWrapped("  %s", brightness_line(g.retardation_nm, c, scene_.illuminant).c_str());
   ImGui::Checkbox("Show vibration directions and cleavage", &grain_overlay_);
 }
 
