@@ -9,9 +9,11 @@
 #include <set>
 
 #include "core/exercise/colour_words.h"
+#include "core/base/input_error.h"
 #include "core/exercise/exercise_files.h"
 #include "core/microscope/grain_labels.h"
 #include "core/microscope/map_section.h"
+#include "core/microscope/section_map.h"
 #include "core/render/progressive_renderer.h"
 
 using namespace pmsim;
@@ -127,6 +129,45 @@ TEST(ExerciseClass, EveryTemplateGradesItsKeyFullAndItsPerturbationZero) {
     EXPECT_FALSE(none[0].submitted);
     EXPECT_DOUBLE_EQ(none[0].score(), 0.0);
   }
+}
+
+// A grain named by its place ("the grain under the crosshair at a given stage position"): every
+// student gets the grain at that place, in their own orientation; a mineral that does not match
+// the grain there is refused naming the pick.
+TEST(ExerciseClass, GrainAtAStagePosition) {
+  const auto file = load_section("granite");
+  glm::dvec2 at{0.0};
+  int label = 0;
+  for (int k = 1; k <= int(file->grains.size()) && !label; ++k)
+    if (file->grains[std::size_t(k - 1)].mineral == "quartz" && file->grain_label(file->domain_at(file->grains[std::size_t(k - 1)].centre_mm)) == k)
+      at = file->grains[std::size_t(k - 1)].centre_mm, label = k;
+  ASSERT_GT(label, 0);
+  nlohmann::json j = {
+      {"type", "exercise_template"},
+      {"title", "t"},
+      {"specimen", {{"rule", "section"}, {"scene", {{"type", "microscope"}, {"sample", {{"type", "section"}, {"section", "granite"}}}}}}},
+      {"grains", {{{"id", "Q"}, {"at_mm", {at.x, at.y}}}}},
+      {"tasks", {{{"task", "1"}, {"kind", "identify"}, {"grain", "Q"}}, {{"task", "2"}, {"kind", "optic_character"}, {"grain", "Q"}}}}};
+  const ExerciseTemplate t = exercise_template_from_json(j, "at.json");
+  for (std::uint32_t seed : {5u, 77u}) {
+    const StudentExercise ex = make_student_exercise(t, "s", seed);
+    ASSERT_EQ(ex.tasks.size(), 2u);
+    EXPECT_EQ(ex.tasks[0].grain_label, label);
+    EXPECT_EQ(ex.tasks[0].truth.answer, "quartz");
+    EXPECT_EQ(ex.tasks[1].truth.answer, "uniaxial");
+    EXPECT_EQ((*ex.tasks[0].stage_mm)[0], at.x);
+    EXPECT_EQ(ex.scene.stage.x_mm, at.x);
+  }
+  j["grains"][0]["mineral"] = "biotite";
+  try {
+    make_student_exercise(exercise_template_from_json(j, "at.json"), "s", 5);
+    FAIL() << "a quartz grain picked as biotite";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key, "grains");
+    EXPECT_EQ(e.value, "Q");
+  }
+  j["grains"][0]["at_mm"] = {1, 2, 3};
+  EXPECT_THROW(exercise_template_from_json(j, "at.json"), InputError);
 }
 
 // Same template, same seed: the same exercise (a teacher can remake a lost key); the student file

@@ -1,6 +1,7 @@
 #include "core/exercise/exercise_template.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -57,8 +58,15 @@ void read_specimen(const JsonReader& root, ExerciseTemplate& t) {
 
 void read_tasks(const JsonReader& root, ExerciseTemplate& t) {
   for (const JsonReader& g : root.has("grains") ? root.objects("grains") : std::vector<JsonReader>{}) {
-    g.refuse_unknown_keys({"id", "mineral"});
-    GrainPick p{g.require<std::string>("id"), g.get_or<std::string>("mineral", "")};
+    g.refuse_unknown_keys({"id", "mineral", "at_mm"});
+    GrainPick p{g.require<std::string>("id"), g.get_or<std::string>("mineral", ""), std::nullopt};
+    if (const nlohmann::json* at = g.find("at_mm"))
+      p.at_mm = g.checked("at_mm", *at, [](const nlohmann::json& v) {
+        if (!v.is_array() || v.size() != 2) throw BadValue{"expected a stage position [x_mm, y_mm]"};
+        const std::array<double, 2> xy{number_value(v[0]), number_value(v[1])};
+        if (!(std::abs(xy[0]) <= 1000 && std::abs(xy[1]) <= 1000)) throw BadValue{"expected |x|, |y| ≤ 1000 mm"};
+        return xy;
+      });
     if (!p.mineral.empty()) {
       try {
         p.mineral = canonical_mineral_name(p.mineral);

@@ -23,10 +23,13 @@ enum class SpecimenRule { Section, Crystal, GrainMount };
 
 // A grain a template's tasks share: the largest grain of `mineral` for which every task on it
 // has a truth (an extinction angle needs a cleavage trace or an elongation, a twin law a twin),
-// chosen among the eligible by the seed. An empty mineral: any mineral.
+// chosen among the eligible by the seed. An empty mineral: any mineral. With `at_mm` the grain is
+// the one under the crosshair at that stage position (stage.x_mm, stage.y_mm) in every student's
+// section (the place is the same; its orientation is the student's).
 struct GrainPick {
   std::string id;
   std::string mineral;
+  std::optional<std::array<double, 2>> at_mm;
 };
 
 struct ExerciseTask {

@@ -23,12 +23,6 @@ namespace {
 
 constexpr glm::dvec3 kAxis{0.0, 0.0, 1.0};
 
-double line_deg(double a) {
-  double r = std::fmod(a, 180.0);
-  if (r < 0) r += 180.0;
-  return r >= 180.0 ? r - 180.0 : r;
-}
-
 // The scene at the label image's size: the same field of view (it depends on the optics, not on
 // the pixel count), `resolution` pixels across.
 Scene at_resolution(const Scene& scene, int resolution) {
@@ -129,7 +123,7 @@ void mount_grains(const Scene& s, RevealGeometry& out) {
     // section frame: the image angle is the stage-frame angle + the stage angle.
     if (const Crystal* c = mount->crystal_of(kFirstFragment + f.label - 1)) {
       const SectionOptics o = section_optics(f.optic_axes, c->principal_indices(kGrainReportIndexWavelengthNm), kAxis);
-      if (!o.circular) g.slow_vibration_deg = line_deg(degrees(std::atan2(o.slow.y, o.slow.x)) + s.stage_deg);
+      if (!o.circular) g.slow_vibration_deg = line_direction_deg(degrees(std::atan2(o.slow.y, o.slow.x)) + s.stage_deg);
     }
     out.grains.push_back(std::move(g));
   }

@@ -186,6 +186,62 @@ std::optional<TaskTruth> grain_truth(TaskKind kind, const Scene& scene, const Se
   }
 }
 
+struct GrainCandidate {
+  int label;
+  double size;
+  std::vector<TaskTruth> truths;
+};
+
+// Grain k with the truth of every task on it, or nullopt when one has none.
+std::optional<GrainCandidate> grain_candidate(const SectionMap& section, const Scene& scene, int k,
+                                              const std::vector<const ExerciseTask*>& tasks) {
+  const SectionGrain& g = section.grains[std::size_t(k - 1)];
+  const GrainReport r = report_grain(scene, section, k);
+  GrainCandidate c{k, g.semi_major_mm + g.semi_minor_mm, {}};
+  for (const ExerciseTask* task : tasks) {
+    auto truth = grain_truth(task->kind, scene, g, r);
+    if (!truth) return std::nullopt;
+    c.truths.push_back(std::move(*truth));
+  }
+  return c;
+}
+
+// The grain of a pick: under its stage position, or drawn by the seed among the larger half of
+// the eligible grains of its mineral (students get different grains).
+GrainCandidate pick_grain(const ExerciseTemplate& tp, const GrainPick& pick, const SectionMap& section,
+                          const StudentExercise& ex, const std::vector<const ExerciseTask*>& tasks,
+                          const std::vector<int>& taken) {
+  const auto refuse = [&](const std::string& why) {
+    return InputError(tp.file, "grains", pick.id, why + " (seed " + std::to_string(ex.seed) + ")");
+  };
+  if (pick.at_mm) {
+    const int k = section.grain_label(section.domain_at({(*pick.at_mm)[0], (*pick.at_mm)[1]}));
+    if (k == 0) throw refuse("no grain under the crosshair at its at_mm");
+    const std::string m = series_name(canonical_mineral_name(section.grains[std::size_t(k - 1)].mineral));
+    if (!pick.mineral.empty() && m != pick.mineral) throw refuse("the grain at its at_mm is " + m + ", not " + pick.mineral);
+    auto c = grain_candidate(section, ex.scene, k, tasks);
+    if (!c) throw refuse("the " + m + " at its at_mm has no truth for every task on it in this orientation");
+    return std::move(*c);
+  }
+  std::vector<GrainCandidate> eligible;
+  for (int k = 1; k <= int(section.grains.size()); ++k) {
+    const SectionGrain& g = section.grains[std::size_t(k - 1)];
+    if (!pick.mineral.empty() && series_name(canonical_mineral_name(g.mineral)) != pick.mineral) continue;
+    if (std::find(taken.begin(), taken.end(), k) != taken.end()) continue;
+    // The grain's centre must lie in the grain (not in a crack or a neighbour's cell).
+    if (section.grain_label(section.domain_at(g.centre_mm)) != k) continue;
+    if (auto c = grain_candidate(section, ex.scene, k, tasks)) eligible.push_back(std::move(*c));
+  }
+  if (eligible.empty())
+    throw refuse("no grain" + (pick.mineral.empty() ? std::string() : " of " + pick.mineral) +
+                 " in this student's section has a truth for every task on it");
+  std::stable_sort(eligible.begin(), eligible.end(), [](const auto& a, const auto& b) { return a.size > b.size; });
+  const double cut = 0.5 * eligible.front().size;
+  std::size_t n = 0;
+  while (n < eligible.size() && eligible[n].size >= cut) ++n;
+  return std::move(eligible[std::size_t(draw(ex.seed, text_hash(pick.id)) * double(n))]);
+}
+
 void section_exercise(const ExerciseTemplate& tp, StudentExercise& ex) {
   ex.scene.sample.orientation_seed = int(ex.seed);
   const std::shared_ptr<const SectionMap> section = load_scene_section(ex.scene);
@@ -194,45 +250,18 @@ void section_exercise(const ExerciseTemplate& tp, StudentExercise& ex) {
     std::vector<const ExerciseTask*> tasks;
     for (const auto& task : tp.tasks)
       if (task.grain == pick.id) tasks.push_back(&task);
-    struct Candidate { int label; double size; std::vector<TaskTruth> truths; };
-    std::vector<Candidate> eligible;
-    for (int k = 1; k <= int(section->grains.size()); ++k) {
-      const SectionGrain& g = section->grains[std::size_t(k - 1)];
-      if (!pick.mineral.empty() && series_name(canonical_mineral_name(g.mineral)) != pick.mineral) continue;
-      if (std::find(taken.begin(), taken.end(), k) != taken.end()) continue;
-      // The grain's centre must lie in the grain (not in a crack or a neighbour's cell).
-      if (section->grain_label(section->domain_at(g.centre_mm)) != k) continue;
-      const GrainReport r = report_grain(ex.scene, *section, k);
-      Candidate c{k, g.semi_major_mm + g.semi_minor_mm, {}};
-      for (const ExerciseTask* task : tasks) {
-        auto truth = grain_truth(task->kind, ex.scene, g, r);
-        if (!truth) break;
-        c.truths.push_back(std::move(*truth));
-      }
-      if (c.truths.size() == tasks.size()) eligible.push_back(std::move(c));
-    }
-    if (eligible.empty())
-      throw InputError(tp.file, "grains", pick.id,
-                       "no grain" + (pick.mineral.empty() ? std::string() : " of " + pick.mineral) +
-                           " in this student's section has a truth for every task on it (seed " +
-                           std::to_string(ex.seed) + ")");
-    // Among the larger half of the eligible grains, the seed chooses: students get different grains.
-    std::stable_sort(eligible.begin(), eligible.end(), [](const auto& a, const auto& b) { return a.size > b.size; });
-    const double cut = 0.5 * eligible.front().size;
-    std::size_t n = 0;
-    while (n < eligible.size() && eligible[n].size >= cut) ++n;
-    Candidate& c = eligible[std::size_t(draw(ex.seed, text_hash(pick.id)) * double(n))];
+    GrainCandidate c = pick_grain(tp, pick, *section, ex, tasks, taken);
     taken.push_back(c.label);
     const SectionGrain& g = section->grains[std::size_t(c.label - 1)];
+    const std::array<double, 2> at = pick.at_mm ? *pick.at_mm : std::array<double, 2>{g.centre_mm.x, g.centre_mm.y};
     for (std::size_t i = 0; i < tasks.size(); ++i) {
-      StudentTask st{*tasks[i], std::array<double, 2>{g.centre_mm.x, g.centre_mm.y}, c.label, "", std::move(c.truths[i])};
-      st.where = "grain " + pick.id + ": the grain under the crosshair with the stage at x = " + fixed(g.centre_mm.x, 3) +
-                 " mm, y = " + fixed(g.centre_mm.y, 3) + " mm";
+      StudentTask st{*tasks[i], at, c.label, "", std::move(c.truths[i])};
+      st.where = "grain " + pick.id + ": the grain under the crosshair with the stage at x = " + fixed(at[0], 3) +
+                 " mm, y = " + fixed(at[1], 3) + " mm";
       ex.tasks.push_back(std::move(st));
     }
   }
 }
-
 
 // The minerals of a template for which every task has a truth.
 std::vector<std::string> eligible_minerals(const ExerciseTemplate& tp, double thickness_um, bool mount) {

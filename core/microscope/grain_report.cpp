@@ -18,16 +18,9 @@ namespace {
 
 constexpr glm::dvec3 kSectionNormal{0.0, 0.0, 1.0};
 
-// [0, 180): a line's angle.
-double line_deg(double a) {
-  double r = std::fmod(a, 180.0);
-  if (r < 0) r += 180.0;
-  return r >= 180.0 ? r - 180.0 : r;
-}
-
 // Image angle of a line lying in the section (section frame, z ≈ 0).
 double image_angle_deg(const glm::dvec3& t, double stage_deg) {
-  return line_deg(std::atan2(t.y, t.x) * 180.0 / kPi + stage_deg);
+  return line_direction_deg(std::atan2(t.y, t.x) * 180.0 / kPi + stage_deg);
 }
 
 // The stage angles in [0, 180) that put a vibration direction on the polarizer: the fast
