@@ -10,7 +10,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "core/base/units.h"
 #include "core/microscope/compensator.h"
@@ -167,7 +170,14 @@ TEST(SpecimenResponseCompose, EveryPixelIsTheDefinitionToFloatRounding) {
   double worst_all = 0.0;
   for (const bool mono : {false, true}) {
     const SpecimenResponse r = random_response(37, 29, 48, mono, mono ? 7u : 3u);
-    for (const double stage : {0.0, 13.0, 30.0, 90.0, 200.0})
+    // Under the sanitizers (PMSIM_SANITIZED=1, scripts/sanitize.sh) two of the five angles: the
+    // same code paths (a turned field with clamped corners, every accessory) at 40 % of the 90 s
+    // this test took under ASan.
+    const char* san = std::getenv("PMSIM_SANITIZED");
+    const bool sanitized = san && std::string(san) == "1";
+    const std::vector<double> stages =
+        sanitized ? std::vector<double>{13.0, 200.0} : std::vector<double>{0.0, 13.0, 30.0, 90.0, 200.0};
+    for (const double stage : stages)
       for (int kind = 0; kind < 5; ++kind) {
         const pmsim::InstrumentSettings in = settings(stage, kind);
         const pmsim::RenderImage img = pmsim::compose_response(r, in);
