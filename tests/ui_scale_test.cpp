@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
+#include <string>
 
 #include "ui/script.h"
 
@@ -31,16 +33,24 @@ int title_text_height(const WindowPixels& px, const Layout& l, float scale) {
 
 }  // namespace
 
+// A 1280×800 off-screen app over an empty 32² stage: the panels, not the specimen, are measured.
+class UiScale : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Scene s;
+    s.render.width = s.render.height = 32;
+    s.sample_in = false;
+    d = HeadlessDriver::create(s, 1280, 800, log);
+    ASSERT_TRUE(d) << log;
+  }
+  std::string log;
+  std::unique_ptr<HeadlessDriver> d;
+};
+
 // Scale 2 doubles the title's glyphs (14 px font rasterised once and scaled: 2× to within a pixel
 // of antialiasing each side) and widens the side panels with them (a quarter of 1280 = 320 px at
 // scale 1; at 2 the 520 px they need, within the 40 % cap of 512).
-TEST(UiScale, TwiceTheScaleTwiceTheText) {
-  Scene s;
-  s.render.width = s.render.height = 32;
-  s.sample_in = false;
-  std::string log;
-  auto d = HeadlessDriver::create(s, 1280, 800, log);
-  ASSERT_TRUE(d) << log;
+TEST_F(UiScale, TwiceTheScaleTwiceTheText) {
   for (int i = 0; i < 2; ++i) d->frame();
   EXPECT_FLOAT_EQ(d->app().ui_scale(), 1.0f) << "off-screen the content scale is 1";
   const int h1 = title_text_height(d->read_pixels(), d->app().layout(), 1.0f);
@@ -57,13 +67,7 @@ TEST(UiScale, TwiceTheScaleTwiceTheText) {
   EXPECT_GT(d->app().layout().field.w, 64.0f) << "the field keeps its place";
 }
 
-TEST(UiScale, AutoFollowsTheContentScaleAndBadValuesAreRefused) {
-  Scene s;
-  s.render.width = s.render.height = 32;
-  s.sample_in = false;
-  std::string log;
-  auto d = HeadlessDriver::create(s, 1280, 800, log);
-  ASSERT_TRUE(d) << log;
+TEST_F(UiScale, AutoFollowsTheContentScaleAndBadValuesAreRefused) {
   d->app().set_content_scale(1.5f);
   EXPECT_FLOAT_EQ(d->app().ui_scale(), 1.5f);
   ASSERT_TRUE(d->app().set("ui.scale=1.25"));

@@ -51,4 +51,6 @@ MineralSeries read_mineral_series(const JsonReader& r) {
   return s;
 }
 
+std::string series_name(std::string_view name) { return std::string(name.substr(0, name.find(':'))); }
+
 }  // namespace pmsim

@@ -47,4 +47,8 @@ MineralSeries read_mineral_series(const JsonReader& series);
 // InputError for an unknown mineral.
 const MineralSeries* find_mineral_series(std::string_view name);
 
+// A name without its composition: "plagioclase:An32" → "plagioclase"; "quartz" stays. A student
+// names the series, not the section's composition.
+std::string series_name(std::string_view name);
+
 }  // namespace pmsim

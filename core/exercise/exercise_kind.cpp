@@ -6,6 +6,7 @@
 
 #include "core/base/input_error.h"
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_series.h"
 #include "core/exercise/colour_words.h"
 
 namespace pmsim {
@@ -178,11 +179,9 @@ std::optional<nlohmann::json> normalized_answer(TaskKind kind, const nlohmann::j
   if (w.empty()) return std::nullopt;
   if (kind == TaskKind::Identify) {
     try {
-      std::string name = canonical_mineral_name(answer.get<std::string>());
       // A series answer is right whatever composition is written: the section's
       // "plagioclase:An32" is plagioclase to a student.
-      if (const auto colon = name.find(':'); colon != std::string::npos) name.resize(colon);
-      return nlohmann::json(name);
+      return nlohmann::json(series_name(canonical_mineral_name(answer.get<std::string>())));
     } catch (const InputError&) {
       return nlohmann::json(w);  // not a library mineral: wrong, but it is an answer
     }

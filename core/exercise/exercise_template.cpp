@@ -8,6 +8,7 @@
 #include "core/base/asset_locator.h"
 #include "core/base/json_reader.h"
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_series.h"
 #include "core/io/scene_file.h"
 
 namespace pmsim {
@@ -69,8 +70,7 @@ void read_tasks(const JsonReader& root, ExerciseTemplate& t) {
       });
     if (!p.mineral.empty()) {
       try {
-        p.mineral = canonical_mineral_name(p.mineral);
-        if (const auto colon = p.mineral.find(':'); colon != std::string::npos) p.mineral.resize(colon);
+        p.mineral = series_name(canonical_mineral_name(p.mineral));
       } catch (const InputError& e) {
         g.fail("mineral", e.reason);
       }

@@ -8,6 +8,7 @@
 #include "core/base/input_error.h"
 #include "core/base/splitmix64.h"
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_series.h"
 #include "core/exercise/colour_words.h"
 #include "core/exercise/mineral_signature.h"
 #include "core/io/scene_file.h"
@@ -38,10 +39,6 @@ std::string fixed(double v, int digits) {
 double rounded(double v, int digits) {
   const double s = std::pow(10.0, digits);
   return std::round(v * s) / s;
-}
-std::string series_name(std::string name) {
-  if (const auto c = name.find(':'); c != std::string::npos) name.resize(c);
-  return name;
 }
 // A draw in [0, 1) that depends on (seed, what, i) only.
 double draw(std::uint32_t seed, std::uint64_t what, std::uint64_t i = 0) {
@@ -125,11 +122,11 @@ std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral
 }
 
 std::optional<TaskTruth> extinction_truth(TaskKind kind, const GrainReport& r) {
-  if (r.extinction_stage_deg.empty() || !r.slow_vibration_deg) return std::nullopt;
+  // The report's angle is measured from the first cleavage trace, else the elongation.
+  if (r.extinction_stage_deg.empty() || !r.slow_vibration_deg || !r.extinction_angle_deg) return std::nullopt;
   const bool cleavage = !r.cleavage_traces_deg.empty();
-  if (!cleavage && !r.elongation_deg) return std::nullopt;
   const double ref = cleavage ? r.cleavage_traces_deg.front() : *r.elongation_deg;
-  const double angle = folded_extinction_angle_deg(line_distance_deg(*r.slow_vibration_deg, ref));
+  const double angle = *r.extinction_angle_deg;
   const std::string seen = "extinct at stage " + angles_text(r.extinction_stage_deg) + "; the " +
                            (cleavage ? "cleavage trace" : "elongation") + " lies at " + fixed(ref, 1) +
                            "° at stage 0° (counter-clockwise from E-W)";
