@@ -234,5 +234,35 @@ TEST(UiExercisePanel, NoCheckWhenTheTemplateSaysSoAndNoRevealBeforeIt) {
   fs::remove_all(f.dir);
 }
 
+// Answers typed and never saved are written when the window closes, and when another exercise
+// replaces theirs: a student loses nothing by closing the app.
+TEST(UiExercisePanel, UnsavedAnswersAreSavedOnCloseAndOnOpeningAnother) {
+  const Fixture a = granite_student("carol"), b = granite_student("dave");
+  const std::string a_answers = answers_path_for(a.file), b_answers = answers_path_for(b.file);
+  {
+    std::string log;
+    auto d = HeadlessDriver::create(Scene{}, kW, kH, log);
+    ASSERT_TRUE(d) << log;
+    const ScriptResult r = run(*d, "exercise open " + a.file +
+                                       "\nset render.width=32\nset render.height=32\nset optics.relief=off\n"
+                                       "exercise answer B1 quartz\nexercise open " + b.file +
+                                       "\nexercise answer B1 biotite\n");
+    ASSERT_TRUE(r.ok) << r.error;
+    ASSERT_TRUE(fs::exists(a_answers)) << "saved when dave's exercise replaced carol's";
+    EXPECT_FALSE(fs::exists(b_answers)) << "nothing written before the window closes";
+  }
+  ASSERT_TRUE(fs::exists(b_answers)) << "saved when the app closed";
+  const StudentAnswers sa = read_answers_file(a_answers), sb = read_answers_file(b_answers);
+  const auto answer = [](const StudentAnswers& s, const std::string& id) {
+    for (const auto& [task, value] : s.answers)
+      if (task == id) return value;
+    return nlohmann::json();
+  };
+  EXPECT_EQ(answer(sa, "B1"), "quartz");
+  EXPECT_EQ(answer(sb, "B1"), "biotite");
+  fs::remove_all(a.dir);
+  fs::remove_all(b.dir);
+}
+
 }  // namespace
 }  // namespace pmsim::ui

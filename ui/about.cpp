@@ -8,7 +8,7 @@ namespace pmsim::ui {
 
 std::vector<std::string> about_lines() {
   return {
-      "pmsim " + pmsim_version(),
+      pmsim_software_name(),
       "A polarizing-microscope simulator: a spectral, polarization-aware ray tracer behind the "
       "controls of a petrographic microscope.",
       "Lens model: V. A. Debelov, K. G. Kushner, L. F. Vasilyeva, \"Lens for a computer model of a "

@@ -92,7 +92,11 @@ App::App(const Scene& scene, int renderer_threads)
   feed_->submit(scene_, generation_);
 }
 
-App::~App() { feed_.reset(); }
+// A student who closes the window keeps the answers typed since the last save.
+App::~App() {
+  if (exercise_ && exercise_->unsaved) exercise_save();
+  feed_.reset();
+}
 
 void App::set_window_size(int width, int height) {
   window_w_ = width;

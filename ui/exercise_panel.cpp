@@ -153,6 +153,8 @@ bool App::open_exercise(const std::string& path, bool load_specimen) {
     return false;
   }
   if (load_specimen && !commit(loaded)) return false;
+  // The exercise it replaces keeps its typed answers (a student switching files loses none).
+  if (exercise_ && exercise_->unsaved) exercise_save();
   scene_path_ = path;
   session->select_tab = true;
   exercise_ = std::move(session);

@@ -33,7 +33,7 @@ std::unique_ptr<WindowDriver> WindowDriver::create(const Scene& scene, int width
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  d->window_ = glfwCreateWindow(width, height, ("pmsim " + pmsim_version() + " - polarizing microscope").c_str(),
+  d->window_ = glfwCreateWindow(width, height, (pmsim_software_name() + " - polarizing microscope").c_str(),
                                nullptr, nullptr);
   if (!d->window_) {
     log += "GLFW: cannot open a window with OpenGL 3.3 core: " + glfw_error() + "\n";
