@@ -13,6 +13,7 @@
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_becke_probe.h"
 #include "core/specimen/traced_specimen.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 #include "ui/app.h"
 #include "ui/teaching.h"
@@ -127,15 +128,15 @@ void App::draw_chart() {
       next_right_y = ly + size.y;
     }
   }
-  // Order boundaries every 551 nm (the first-order red of the chart).
-  for (int order = 1; order * 551.0 < Teaching::kChartMaxNm; ++order) {
-    const float x = x_of(order * 551.0);
+  // Order boundaries every kOrderWavelengthNm (the first-order red of the chart).
+  for (int order = 1; order * kOrderWavelengthNm < Teaching::kChartMaxNm; ++order) {
+    const float x = x_of(order * kOrderWavelengthNm);
     draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y + 4), IM_COL32(255, 255, 255, 90));
   }
-  for (int order = 1; (order - 1) * 551.0 < Teaching::kChartMaxNm; ++order) {
+  for (int order = 1; (order - 1) * kOrderWavelengthNm < Teaching::kChartMaxNm; ++order) {
     char label[16];
     std::snprintf(label, sizeof label, "order %d", order);
-    draw->AddText(ImVec2(x_of((order - 1) * 551.0) + 4, p1.y + 1), text, label);
+    draw->AddText(ImVec2(x_of((order - 1) * kOrderWavelengthNm) + 4, p1.y + 1), text, label);
   }
   // The plate at the probe: its retardation (vertical) and thickness (horizontal) meet on its
   // birefringence line.
@@ -175,6 +176,14 @@ void App::draw_grain_text(const GrainReport& g) {
   // What a student measures on the grain: all computed by core (report_grain) from the grain's
   // indicatrix and crystallography at the current stage angle.
   ImGui::Text("Grain %d      %s", g.id, g.mineral.c_str());
+  if (g.opaque) {
+    // core's report leaves the optics empty: nothing of them reaches the eyepiece.
+    ImGui::TextWrapped("Opaque        black in plane light and between crossed polars at every stage angle: "
+                       "no relief, colour, interference colour or extinction to read");
+    ImGui::Text("Elongation    %s", g.elongation_deg ? "elongated outline" : "none (equant)");
+    if (g.twin) ImGui::Text("Twinned       %s law", g.twin->law.c_str());
+    return;
+  }
   if (g.extinction_angle_deg)
     ImGui::Text("Extinction    %.1f deg to its %s", *g.extinction_angle_deg,
                 g.cleavage_traces_deg.empty() ? "elongation" : "cleavage");

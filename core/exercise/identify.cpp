@@ -6,6 +6,7 @@
 
 #include "core/base/input_error.h"
 #include "core/exercise/exercise_kind.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
@@ -65,7 +66,7 @@ std::string optics_reason(const MineralSignature& s, const Observations& o) {
   }
   if (o.max_order) {
     const double gamma = 1000.0 * o.thickness_um * s.birefringence;
-    const double lo = 550.0 * (*o.max_order - 1) - kOrderSlackNm, hi = 550.0 * *o.max_order + kOrderSlackNm;
+    const double lo = kOrderWavelengthNm * (*o.max_order - 1) - kOrderSlackNm, hi = kOrderWavelengthNm * *o.max_order + kOrderSlackNm;
     if (*o.max_order == 0 ? gamma > kOrderSlackNm : (gamma < lo || gamma > hi)) return "";
     add("birefringence " + num(s.birefringence, 4) + ": " + num(gamma, 0) + " nm at " + num(o.thickness_um, 0) +
         " µm, order " + std::to_string(max_interference_order(s.birefringence, o.thickness_um)));
@@ -121,6 +122,20 @@ std::string extinction_reason(const MineralSignature& s, const Observations& o) 
   return why.empty() ? "-" : why;
 }
 
+// Opacity first: it decides whether the other observations can apply at all.
+std::string opaque_reason(const MineralSignature& s, const Observations& o) {
+  if (!s.opaque) {
+    if (o.opaque && *o.opaque) return "";
+    return o.opaque ? "transparent in 30 µm" : "-";
+  }
+  if (!(o.opaque && *o.opaque)) return "";
+  const bool transmitted = o.relief || o.relief_sign || o.n_range || o.coloured || o.pleochroic || o.max_order ||
+                           o.character || o.optic_sign || o.two_v_deg || o.extinction_type ||
+                           o.extinction_angle_deg || o.elongation;
+  if (transmitted) return "";
+  return "opaque: black in plane and crossed light (under 1e-4 of the light through 30 µm)";
+}
+
 }  // namespace
 
 std::vector<Candidate> identify(const Observations& o) {
@@ -128,7 +143,7 @@ std::vector<Candidate> identify(const Observations& o) {
   for (const MineralSignature& s : library_signatures()) {
     Candidate c{s.mineral, {}};
     bool ok = true;
-    for (const auto& test : {relief_reason, optics_reason, look_reason, extinction_reason}) {
+    for (const auto& test : {opaque_reason, relief_reason, optics_reason, look_reason, extinction_reason}) {
       const std::string why = test(s, o);
       if (why.empty()) {
         ok = false;
@@ -163,7 +178,8 @@ Observations parse_observation(Observations o, const std::string& key, const std
     return std::array<double, 2>{lo, hi};
   };
   const auto yes_no = [&]() { return word({"yes", "no"}) == "yes"; };
-  if (key == "relief") {
+  if (key == "opaque") o.opaque = yes_no();
+  else if (key == "relief") {
     const std::string w = word({"low", "moderate", "high", "very_high"});
     o.relief = w == "low" ? ReliefClass::Low : w == "moderate" ? ReliefClass::Moderate : w == "high" ? ReliefClass::High : ReliefClass::VeryHigh;
   } else if (key == "relief-sign") o.relief_sign = word({"positive", "negative"});
@@ -194,6 +210,14 @@ Observations parse_observation(Observations o, const std::string& key, const std
 
 Observations observations_of(const MineralSignature& s) {
   Observations o;
+  if (s.opaque) {
+    // A black grain shows only that it is black, its outline and (in reflected light, or at its
+    // edges) partings and twins: no relief, colour or interference to read.
+    o.opaque = true;
+    o.cleavages = 0;
+    if (!s.twin_laws.empty()) o.twin_law = s.twin_laws.front();
+    return o;
+  }
   // What a student reads at the microscope: the relief class (not a measured index), 2V to
   // ±10°, the largest extinction angle seen.
   o.relief = relief_class(0.5 * (s.n_min + s.n_max));

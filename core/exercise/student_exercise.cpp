@@ -19,13 +19,13 @@
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/grain_mount_truth.h"
 #include "core/specimen/probe_point.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 namespace {
 
 constexpr double kIndexNm = kGrainReportIndexWavelengthNm;  // n_D, the tables' wavelength
-constexpr double kOrderNm = 550.0;  // one interference order on the Michel-Lévy chart (Nesse 2012 §7.5)
 // Up to this an extinction is called parallel: micas and other "parallel" minerals extinguish
 // within 0-3° of their cleavage (Nesse 2012 ch. 14), and a student's setting of the darkest
 // position scatters by 1-2°; the default tolerance of an extinction angle is the same.
@@ -62,6 +62,9 @@ std::string angles_text(const std::vector<double>& a) {
 // The truths that do not depend on the grain's orientation.
 std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral, double thickness_um) {
   const MineralSignature& f = cached_mineral_signature(mineral);
+  // An opaque grain (magnetite, ilmenite) is black in plane and crossed light: naming it is the
+  // only task it can answer; its character, 2V, birefringence or colours cannot be seen.
+  if (f.opaque && kind != TaskKind::Identify) return std::nullopt;
   TaskTruth t;
   const std::string nd = " (indices at " + fixed(kIndexNm, 1) + " nm)";
   switch (kind) {
@@ -109,7 +112,7 @@ std::optional<TaskTruth> mineral_truth(TaskKind kind, const std::string& mineral
     case TaskKind::MaxInterferenceOrder: {
       if (f.character == "isotropic") return std::nullopt;
       const double gamma_nm = 1000.0 * thickness_um * f.birefringence;
-      const int order = std::max(1, int(std::ceil(gamma_nm / kOrderNm)));
+      const int order = std::max(1, int(std::ceil(gamma_nm / kOrderWavelengthNm)));
       t.answer = order;
       t.explanation = "a grain cut with n_gamma and n_alpha in its plane shows " + fixed(thickness_um, 0) + " µm × " +
                       fixed(f.birefringence, 4) + " = " + fixed(gamma_nm, 0) + " nm: order " +

@@ -7,6 +7,7 @@
 
 #include "core/base/units.h"
 #include "core/microscope/evaluation_plan.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
@@ -38,7 +39,7 @@ FigureInfo describe_figure(const Scene& scene_in) {
     return f;
   }
   const glm::dmat3& R = D.crystal_to_lab;  // columns X, Y, Z in the lab (stage applied)
-  const glm::dvec3 n = D.crystal->principal_indices(589.3);
+  const glm::dvec3 n = D.crystal->principal_indices(kMineralTableDNm);
   const std::string comp = scene.compensator == Compensator::Gypsum        ? "gypsum plate"
                            : scene.compensator == Compensator::Mica        ? "mica plate"
                            : scene.compensator == Compensator::QuartzWedge ? "quartz wedge"

@@ -18,14 +18,15 @@
 #include "core/crystal/section_optics.h"
 #include "core/microscope/scene.h"
 #include "core/microscope/section_map.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 // Indices for the vibration directions and extinction positions: the sodium D line, the
 // wavelength optical-mineralogy tables quote (Nesse 2012 ch. 7). Retardation: at 550 nm, the
 // first-order red of the gypsum plate and the Michel-Lévy chart's reference.
-constexpr double kGrainReportIndexWavelengthNm = 589.3;
-constexpr double kGrainReportRetardationWavelengthNm = 550.0;
+constexpr double kGrainReportIndexWavelengthNm = kMineralTableDNm;
+constexpr double kGrainReportRetardationWavelengthNm = kOrderWavelengthNm;
 
 struct GrainTwinReport {
   std::string law;                           // SectionGrain::twin_law
@@ -52,6 +53,11 @@ struct GrainReport {
   // circular section. What the app's overlay draws.
   std::optional<double> slow_vibration_deg;
   std::optional<GrainTwinReport> twin;
+  // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
+  // and crossed light, so nothing above is observable in transmitted light — the extinction
+  // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left
+  // empty and the retardation 0; the shape (elongation) and the lattice (euler_deg) still are given.
+  bool opaque = false;
 };
 
 // The report of grain `label` (1 … grains.size(); std::out_of_range otherwise) in `scene` (stage

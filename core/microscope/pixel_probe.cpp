@@ -8,6 +8,7 @@
 #include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
 #include "core/microscope/view_geometry.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
@@ -56,11 +57,11 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
     p.transmission.push_back(std::isfinite(t) ? t : 0.0);
   }
   if (D.crystal && p.thickness_um > 0) {
-    PreparedPlate pp = plan->prepare(std::max(0, dom), 550.0);
+    PreparedPlate pp = plan->prepare(std::max(0, dom), kOrderWavelengthNm);
     pp.thickness_um = p.thickness_um;
     p.retardation_nm = plate_modes(pp, k).retardation_nm;
   }
-  p.order = p.retardation_nm / 550.0;
+  p.order = p.retardation_nm / kOrderWavelengthNm;
   return p;
 }
 

@@ -11,12 +11,13 @@
 
 #include "core/microscope/scene.h"
 #include "core/specimen/specimen_scene.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 // The Becke-line probes' wavelength: the sodium D line, where immersion liquids and mounting
 // media are specified (n_D).
-constexpr double kBeckeWavelengthNm = 589.26;
+constexpr double kBeckeWavelengthNm = kLiquidDNm;
 // |n' − n_D| below which the outline of a 30–300 µm fragment is no longer seen as a line but as
 // the colour fringes of a near match (the precision of the immersion method, Nesse 2012 §4).
 constexpr double kBeckeMatch = 0.001;

@@ -19,12 +19,11 @@
 #include "core/specimen/plane_light_passes.h"
 #include "core/specimen/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 namespace {
-
-constexpr double kLambdaD_nm = 589.26;  // the D line of the liquid series' n_D
 
 struct Geometry {
   double na, nac, r_in, a_in;  // objective NA, condenser cone NA, inner stratum radius, its pupil fraction
@@ -163,8 +162,8 @@ std::vector<std::uint8_t> pixels_near_fragments(const SpecimenScene& scene, int 
 
 double objective_focus_z_air_um(const SpecimenScene& scene, double focus_um) {
   const SpecimenLayers& L = scene.layers();
-  return scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLambdaD_nm) -
-         (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLambdaD_nm) + focus_um;
+  return scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLiquidDNm) -
+         (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLiquidDNm) + focus_um;
 }
 
 RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& o,

@@ -17,12 +17,11 @@
 #include "core/microscope/view_geometry.h"
 #include "core/specimen/last_built.h"
 #include "core/specimen/specimen_random.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 namespace {
-
-constexpr double kLambdaD_nm = 589.26;  // n_D of sample.medium_index, as the liquid series'
 
 // A smooth random function of position with RMS 1: a sum of K plane waves of random direction,
 // wavelength in [lo, hi] and phase (a Gaussian random field's spectral sampling, Shinozuka &
@@ -342,7 +341,7 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
 
 IsotropicMedium section_mounting_medium(const Scene& scene) {
   const Medium& m = find_medium(scene.sample.medium);
-  const double offset = scene.sample.medium_index ? *scene.sample.medium_index - m.n(kLambdaD_nm) : 0.0;
+  const double offset = scene.sample.medium_index ? *scene.sample.medium_index - m.n(kLiquidDNm) : 0.0;
   return IsotropicMedium(m, offset);
 }
 
