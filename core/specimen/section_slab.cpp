@@ -72,62 +72,90 @@ SlabNode section_slab_node(const SectionMap& m, const glm::dvec2& p_mm, double s
   return node;
 }
 
-std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const SectionMap>& map,
-                                                  const IsotropicMedium& medium, const SectionSlabOptions& o) {
-  if (!map) throw std::invalid_argument("build_section_slab: no section");
-  if (!(o.spacing_um > 0.0) || !(o.thickness_um > 0.0) || !(o.half_width_mm > 0.0) || !(o.film_um > 0.0))
-    throw std::invalid_argument("build_section_slab: spacing, thickness, window and film must be positive");
-  const SectionMap& m = *map;
+namespace {
 
-  // Media: one per crystal domain, in domain order.
-  const std::vector<int> medium_of_domain = section_slab_media(m);
+// The node lattice: global (node positions are multiples of h), so that the same section point
+// gets the same node wherever the window lies. N nodes a side, C = N − 1 cells.
+struct SlabLattice {
+  double h = 0.0;
+  int N = 0, C = 0;
+  glm::dvec2 origin_um{0.0};
+  SlabLattice(const SectionSlabOptions& o) : h(o.spacing_um) {
+    const int half_n = std::min(kMaxSlabNodes / 2, int(std::ceil(1000.0 * o.half_width_mm / h)));
+    N = 2 * half_n + 1;
+    C = N - 1;
+    origin_um = glm::round(1000.0 * o.centre_mm / h) * h - double(half_n) * h;
+  }
+  glm::dvec2 node_pos(int i, int j) const { return origin_um + glm::dvec2(i * h, j * h); }
+  std::size_t node(int i, int j) const { return std::size_t(j) * std::size_t(N) + std::size_t(i); }
+  std::size_t cell(int ci, int cj) const { return std::size_t(cj) * std::size_t(C) + std::size_t(ci); }
+  std::size_t cells() const { return std::size_t(C) * std::size_t(C); }
+};
+
+// Phase 1. One medium per crystal domain, in domain order.
+std::vector<SpecimenMedium> slab_media(const std::shared_ptr<const SectionMap>& map,
+                                       const std::vector<int>& medium_of_domain) {
+  const SectionMap& m = *map;
   std::vector<SpecimenMedium> media;
   for (int d = 2; d < m.domain_count(); ++d)
     if (medium_of_domain[std::size_t(d)] != kSpecimenLiquid)
       media.push_back({std::nullopt, std::shared_ptr<const Crystal>(map, m.crystal_of_domain(d)),
                        m.orientation_of_domain(d)});
+  return media;
+}
 
-  // The node lattice: global (node positions are multiples of h), so that the same section point
-  // gets the same node wherever the window lies.
-  const double h = o.spacing_um;
-  const int half_n = std::min(kMaxSlabNodes / 2, int(std::ceil(1000.0 * o.half_width_mm / h)));
-  const int N = 2 * half_n + 1;
-  const glm::dvec2 origin_um = glm::round(1000.0 * o.centre_mm / h) * h - double(half_n) * h;
-  const auto node_pos = [&](int i, int j) { return origin_um + glm::dvec2(i * h, j * h); };
+// Phase 2. Each node's medium, and on a crack node the shift its cleavage plane takes down to
+// the bottom face.
+struct NodeLabels {
+  std::vector<int> label;
+  std::vector<glm::dvec2> crack_shift;
+  std::vector<char> is_crack;
+  int at(const SlabLattice& g, int i, int j) const { return label[g.node(i, j)]; }
+};
 
-  std::vector<int> label(std::size_t(N) * N, kSpecimenLiquid);
-  std::vector<glm::dvec2> crack_shift(std::size_t(N) * N, glm::dvec2(0.0));
-  std::vector<char> is_crack(std::size_t(N) * N, 0);
-  const double t = o.thickness_um;
+NodeLabels label_nodes(const SectionMap& m, const SlabLattice& g, const std::vector<int>& medium_of_domain,
+                       double t) {
+  const std::size_t nodes = std::size_t(g.N) * std::size_t(g.N);
+  NodeLabels n{std::vector<int>(nodes, kSpecimenLiquid), std::vector<glm::dvec2>(nodes, glm::dvec2(0.0)),
+               std::vector<char>(nodes, 0)};
+  const int N = g.N;
   tbb::parallel_for(tbb::blocked_range<int>(1, N - 1), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j < rows.end(); ++j)
       for (int i = 1; i < N - 1; ++i) {
-        const SlabNode node = section_slab_node(m, 1e-3 * node_pos(i, j), h);
-        const std::size_t n = std::size_t(j) * N + i;
-        label[n] = medium_of_domain[std::size_t(node.domain)];
-        const int f = node.crack_family, g = node.crack_grain;
+        const SlabNode node = section_slab_node(m, 1e-3 * g.node_pos(i, j), g.h);
+        const std::size_t k = g.node(i, j);
+        n.label[k] = medium_of_domain[std::size_t(node.domain)];
+        const int f = node.crack_family, gr = node.crack_grain;
         if (f < 0) continue;
         // The cleavage plane through the crack's trace on the top face reaches the bottom face
         // shifted along its horizontal normal by t·n_z/|n_h| (n·Δx = 0 over a drop of t).
-        const glm::dvec3 pn = m.grains[std::size_t(g)].cracks[std::size_t(f)].plane_normal;
+        const glm::dvec3 pn = m.grains[std::size_t(gr)].cracks[std::size_t(f)].plane_normal;
         const glm::dvec2 nh(pn.x, pn.y);
         const double len = glm::length(nh);
         if (len < 1e-6) continue;
-        is_crack[n] = 1;
-        crack_shift[n] = (t * pn.z / (len * len)) * nh;
+        n.is_crack[k] = 1;
+        n.crack_shift[k] = (t * pn.z / (len * len)) * nh;
       }
   });
   // The outer ring stays mounting medium: the slab closes in walls inside the window.
+  return n;
+}
 
-  // Cell vertices (surface nets).
-  const int C = N - 1;
-  const auto L = [&](int i, int j) { return label[std::size_t(j) * N + i]; };
-  std::vector<glm::dvec2> cell_xy(std::size_t(C) * C);
-  std::vector<float> dist(std::size_t(C) * C, std::numeric_limits<float>::infinity());
-  std::vector<glm::dvec2> src_shift(std::size_t(C) * C, glm::dvec2(0.0));
+// Phase 3. Cell vertices (surface nets): the mean of the cell's edge midpoints where the label
+// changes; crack cells get distance 0 and the mean shift of their crack nodes.
+struct SurfaceNet {
+  std::vector<glm::dvec2> cell_xy;
+  std::vector<float> dist;           // to the nearest crack cell (µm), ∞ where none
+  std::vector<glm::dvec2> src_shift;  // that crack's shift
+};
+
+SurfaceNet place_cell_vertices(const SlabLattice& g, const NodeLabels& n) {
+  const int C = g.C;
+  SurfaceNet s{std::vector<glm::dvec2>(g.cells()), std::vector<float>(g.cells(), std::numeric_limits<float>::infinity()),
+               std::vector<glm::dvec2>(g.cells(), glm::dvec2(0.0))};
   for (int cj = 0; cj < C; ++cj)
     for (int ci = 0; ci < C; ++ci) {
-      const int a = L(ci, cj), b = L(ci + 1, cj), c = L(ci + 1, cj + 1), d = L(ci, cj + 1);
+      const int a = n.at(g, ci, cj), b = n.at(g, ci + 1, cj), c = n.at(g, ci + 1, cj + 1), d = n.at(g, ci, cj + 1);
       glm::dvec2 sum(0.0);
       int k = 0;
       const auto edge = [&](int la, int lb, glm::dvec2 mid) {
@@ -141,149 +169,172 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
       edge(c, d, {0.5, 1.0});
       edge(d, a, {0.0, 0.5});
       const glm::dvec2 local = k > 0 ? sum / double(k) : glm::dvec2(0.5);
-      const std::size_t cell = std::size_t(cj) * C + ci;
-      cell_xy[cell] = node_pos(ci, cj) + h * local;
-      glm::dvec2 s(0.0);
+      const std::size_t cell = g.cell(ci, cj);
+      s.cell_xy[cell] = g.node_pos(ci, cj) + g.h * local;
+      glm::dvec2 shift(0.0);
       int nc = 0;
       for (const std::array<int, 2>& q : {std::array<int, 2>{ci, cj}, {ci + 1, cj}, {ci + 1, cj + 1}, {ci, cj + 1}}) {
-        const std::size_t n = std::size_t(q[1]) * N + q[0];
-        if (is_crack[n]) {
-          s += crack_shift[n];
+        const std::size_t k2 = g.node(q[0], q[1]);
+        if (n.is_crack[k2]) {
+          shift += n.crack_shift[k2];
           ++nc;
         }
       }
       if (nc > 0) {
-        dist[cell] = 0.0f;
-        src_shift[cell] = s / double(nc);
+        s.dist[cell] = 0.0f;
+        s.src_shift[cell] = shift / double(nc);
       }
     }
-  // Two smoothing steps of the top's boundary vertices (surface nets' relaxation): each moves to
-  // the mean of itself and its boundary neighbours, kept inside its own cell. A boundary along a
-  // grid diagonal or a crack nearly along the grid is then a straight edge, not a staircase. The
-  // bottom keeps the unsmoothed vertices: a smoothed quad can be thin enough for the lean's
-  // gradient to turn it over (measured: 20 of 80 000 bottom faces of a schist window).
-  const std::vector<glm::dvec2> cell_xy_raw = cell_xy;
-  {
-    std::vector<char> boundary(std::size_t(C) * C, 0);
-    for (int cj = 0; cj < C; ++cj)
-      for (int ci = 0; ci < C; ++ci) {
-        const int a = L(ci, cj);
-        boundary[std::size_t(cj) * C + ci] = L(ci + 1, cj) != a || L(ci + 1, cj + 1) != a || L(ci, cj + 1) != a;
-      }
-    std::vector<glm::dvec2> next = cell_xy;
-    for (int step = 0; step < 2; ++step) {
-      for (int cj = 1; cj + 1 < C; ++cj)
-        for (int ci = 1; ci + 1 < C; ++ci) {
-          const std::size_t c = std::size_t(cj) * C + ci;
-          if (!boundary[c]) continue;
-          glm::dvec2 sum = cell_xy[c];
-          int k = 1;
-          for (const std::size_t nb : {c - 1, c + 1, c - std::size_t(C), c + std::size_t(C)})
-            if (boundary[nb]) {
-              sum += cell_xy[nb];
-              ++k;
-            }
-          const glm::dvec2 lo = node_pos(ci, cj) + 0.05 * h, hi = node_pos(ci + 1, cj + 1) - 0.05 * h;
-          next[c] = glm::clamp(sum / double(k), lo, hi);
-        }
-      cell_xy.swap(next);
-      next = cell_xy;
-    }
-  }
-  // Distance to the nearest crack cell with that crack's shift carried along (two-pass chamfer
-  // distance transform, Borgefors 1986).
-  {
-    const float dx = float(h), dd = float(h * std::sqrt(2.0));
-    const auto relax = [&](int ci, int cj, int ni, int nj, float w) {
-      if (ni < 0 || nj < 0 || ni >= C || nj >= C) return;
-      const std::size_t a = std::size_t(cj) * C + ci, b = std::size_t(nj) * C + ni;
-      if (dist[b] + w < dist[a]) {
-        dist[a] = dist[b] + w;
-        src_shift[a] = src_shift[b];
-      }
-    };
-    for (int cj = 0; cj < C; ++cj)
-      for (int ci = 0; ci < C; ++ci) {
-        relax(ci, cj, ci - 1, cj, dx);
-        relax(ci, cj, ci, cj - 1, dx);
-        relax(ci, cj, ci - 1, cj - 1, dd);
-        relax(ci, cj, ci + 1, cj - 1, dd);
-      }
-    for (int cj = C - 1; cj >= 0; --cj)
-      for (int ci = C - 1; ci >= 0; --ci) {
-        relax(ci, cj, ci + 1, cj, dx);
-        relax(ci, cj, ci, cj + 1, dx);
-        relax(ci, cj, ci + 1, cj + 1, dd);
-        relax(ci, cj, ci - 1, cj + 1, dd);
-      }
-  }
+  return s;
+}
 
-  // Vertices: top (index cell) and bottom (C² + cell).
+// Phase 4. Two smoothing steps of the top's boundary vertices (surface nets' relaxation): each
+// moves to the mean of itself and its boundary neighbours, kept inside its own cell. A boundary
+// along a grid diagonal or a crack nearly along the grid is then a straight edge, not a staircase.
+void relax_boundary_vertices(const SlabLattice& g, const NodeLabels& n, std::vector<glm::dvec2>& cell_xy) {
+  const int C = g.C;
+  std::vector<char> boundary(g.cells(), 0);
+  for (int cj = 0; cj < C; ++cj)
+    for (int ci = 0; ci < C; ++ci) {
+      const int a = n.at(g, ci, cj);
+      boundary[g.cell(ci, cj)] = n.at(g, ci + 1, cj) != a || n.at(g, ci + 1, cj + 1) != a || n.at(g, ci, cj + 1) != a;
+    }
+  std::vector<glm::dvec2> next = cell_xy;
+  for (int step = 0; step < 2; ++step) {
+    for (int cj = 1; cj + 1 < C; ++cj)
+      for (int ci = 1; ci + 1 < C; ++ci) {
+        const std::size_t c = g.cell(ci, cj);
+        if (!boundary[c]) continue;
+        glm::dvec2 sum = cell_xy[c];
+        int k = 1;
+        for (const std::size_t nb : {c - 1, c + 1, c - std::size_t(C), c + std::size_t(C)})
+          if (boundary[nb]) {
+            sum += cell_xy[nb];
+            ++k;
+          }
+        const glm::dvec2 lo = g.node_pos(ci, cj) + 0.05 * g.h, hi = g.node_pos(ci + 1, cj + 1) - 0.05 * g.h;
+        next[c] = glm::clamp(sum / double(k), lo, hi);
+      }
+    cell_xy.swap(next);
+    next = cell_xy;
+  }
+}
+
+// Phase 5. Distance to the nearest crack cell with that crack's shift carried along (two-pass
+// chamfer distance transform, Borgefors 1986).
+void spread_crack_shifts(const SlabLattice& g, SurfaceNet& s) {
+  const int C = g.C;
+  const float dx = float(g.h), dd = float(g.h * std::sqrt(2.0));
+  const auto relax = [&](int ci, int cj, int ni, int nj, float w) {
+    if (ni < 0 || nj < 0 || ni >= C || nj >= C) return;
+    const std::size_t a = g.cell(ci, cj), b = g.cell(ni, nj);
+    if (s.dist[b] + w < s.dist[a]) {
+      s.dist[a] = s.dist[b] + w;
+      s.src_shift[a] = s.src_shift[b];
+    }
+  };
+  for (int cj = 0; cj < C; ++cj)
+    for (int ci = 0; ci < C; ++ci) {
+      relax(ci, cj, ci - 1, cj, dx);
+      relax(ci, cj, ci, cj - 1, dx);
+      relax(ci, cj, ci - 1, cj - 1, dd);
+      relax(ci, cj, ci + 1, cj - 1, dd);
+    }
+  for (int cj = C - 1; cj >= 0; --cj)
+    for (int ci = C - 1; ci >= 0; --ci) {
+      relax(ci, cj, ci + 1, cj, dx);
+      relax(ci, cj, ci, cj + 1, dx);
+      relax(ci, cj, ci + 1, cj + 1, dd);
+      relax(ci, cj, ci - 1, cj + 1, dd);
+    }
+}
+
+// Phase 6. The bottom face's horizontal lean under each cell: the grain walls' random
+// inclination (`field`) and, near a crack, the crack's own lean (`crack`): 1 on the crack, fading
+// over R ≥ 2.5·|Δ| (slope ≤ 0.6).
+struct BottomLean {
+  std::vector<glm::dvec2> field, crack;
+};
+
+BottomLean bottom_lean(const SlabLattice& g, const SurfaceNet& s, const SectionSlabOptions& o) {
   const WaveField fx(o.seed * 4 + 1, 400.0, 900.0), fy(o.seed * 4 + 2, 400.0, 900.0);
+  // RMS |shift| = t·tan(inclination): each component's RMS is that over √2.
+  const double amp = o.thickness_um * std::tan(radians(o.inclination_deg)) / std::sqrt(2.0);
+  BottomLean b{std::vector<glm::dvec2>(g.cells()), std::vector<glm::dvec2>(g.cells(), glm::dvec2(0.0))};
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.C), [&](const tbb::blocked_range<int>& rows) {
+    for (int cj = rows.begin(); cj < rows.end(); ++cj)
+      for (int ci = 0; ci < g.C; ++ci) {
+        const std::size_t cell = g.cell(ci, cj);
+        const glm::dvec2 p = s.cell_xy[cell];
+        b.field[cell] = amp > 0.0 ? amp * glm::dvec2(fx(p), fy(p)) : glm::dvec2(0.0);
+        if (std::isfinite(s.dist[cell])) {
+          const glm::dvec2 delta = s.src_shift[cell] - b.field[cell];
+          const double R = 2.5 * glm::length(delta) + 2.0 * g.h;
+          b.crack[cell] = (1.0 - smoothstep01(double(s.dist[cell]) / R)) * delta;
+        }
+      }
+  });
+  return b;
+}
+
+// Phase 7. Where cracks of two families (or of two grains) meet, their leans differ by up to
+// 2·t·tan 30° over one cell: two box filters of radius 25 µm turn that jump into a ramp of slope
+// < 0.7 (the slab must not fold; the crossing planes cannot both be followed to the bottom
+// there), at the cost of ~20 % of a crack's lean.
+void smooth_crack_lean(const SlabLattice& g, std::vector<glm::dvec2>& crack) {
+  const int C = g.C;
+  const int r = std::max(1, int(std::ceil(25.0 / g.h)));
+  std::vector<glm::dvec2> tmp(g.cells());
+  const auto box = [&](std::vector<glm::dvec2>& in, std::vector<glm::dvec2>& out, bool along_x) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, C), [&](const tbb::blocked_range<int>& lines) {
+      for (int l = lines.begin(); l < lines.end(); ++l) {
+        const auto at = [&](int k) -> std::size_t {
+          k = std::clamp(k, 0, C - 1);
+          return along_x ? std::size_t(l) * C + k : std::size_t(k) * C + l;
+        };
+        glm::dvec2 sum(0.0);
+        for (int k = -r; k <= r; ++k) sum += in[at(k)];
+        for (int k = 0; k < C; ++k) {
+          out[at(k)] = sum / double(2 * r + 1);
+          sum += in[at(k + r + 1)] - in[at(k - r)];
+        }
+      }
+    });
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    box(crack, tmp, true);
+    box(tmp, crack, false);
+  }
+}
+
+// Phase 8. The vertices: top (index cell) at the smoothed vertex, raised by the polishing
+// relief; bottom (C² + cell) at the unsmoothed vertex, leaned.
+void slab_vertices(const SlabLattice& g, const std::vector<glm::dvec2>& top_xy, const std::vector<glm::dvec2>& bottom_xy,
+                   const BottomLean& lean, const SectionSlabOptions& o, SpecimenMesh& mesh) {
   // Polishing relief of 8–20 µm wavelength: RMS slope ≈ 2π·0.15/14 ≈ 0.07 rad, which a surface
   // between media 0.3 apart in n (garnet in epoxy) turns into deviations of ~0.02 rad, the size of
   // a stopped-down condenser's cone: shagreen, while quartz (Δn ≈ 0.01) stays smooth.
   const WaveField rough(o.seed * 4 + 3, 8.0, 20.0);
-  // RMS |shift| = t·tan(inclination): each component's RMS is that over √2.
-  const double amp = t * std::tan(radians(o.inclination_deg)) / std::sqrt(2.0);
-  const double z_bottom = o.film_um, z_top = o.film_um + t;
-  const std::size_t cells = std::size_t(C) * C;
-  std::vector<glm::dvec2> field(cells), crack(cells, glm::dvec2(0.0));
-  tbb::parallel_for(tbb::blocked_range<int>(0, C), [&](const tbb::blocked_range<int>& rows) {
-    for (int cj = rows.begin(); cj < rows.end(); ++cj)
-      for (int ci = 0; ci < C; ++ci) {
-        const std::size_t cell = std::size_t(cj) * C + ci;
-        const glm::dvec2 p = cell_xy[cell];
-        field[cell] = amp > 0.0 ? amp * glm::dvec2(fx(p), fy(p)) : glm::dvec2(0.0);
-        if (std::isfinite(dist[cell])) {
-          // Near a crack its own lean: 1 on the crack, fading over R ≥ 2.5·|Δ| (slope ≤ 0.6).
-          const glm::dvec2 delta = src_shift[cell] - field[cell];
-          const double R = 2.5 * glm::length(delta) + 2.0 * h;
-          crack[cell] = (1.0 - smoothstep01(double(dist[cell]) / R)) * delta;
-        }
-      }
-  });
-  // Where cracks of two families (or of two grains) meet, their leans differ by up to 2·t·tan 30°
-  // over one cell: two box filters of radius 25 µm turn that jump into a ramp of slope < 0.7 (the
-  // slab must not fold; the crossing planes cannot both be followed to the bottom there), at the
-  // cost of ~20 % of a crack's lean.
-  {
-    const int r = std::max(1, int(std::ceil(25.0 / h)));
-    std::vector<glm::dvec2> tmp(cells);
-    const auto box = [&](std::vector<glm::dvec2>& in, std::vector<glm::dvec2>& out, bool along_x) {
-      tbb::parallel_for(tbb::blocked_range<int>(0, C), [&](const tbb::blocked_range<int>& lines) {
-        for (int l = lines.begin(); l < lines.end(); ++l) {
-          const auto at = [&](int k) -> std::size_t {
-            k = std::clamp(k, 0, C - 1);
-            return along_x ? std::size_t(l) * C + k : std::size_t(k) * C + l;
-          };
-          glm::dvec2 sum(0.0);
-          for (int k = -r; k <= r; ++k) sum += in[at(k)];
-          for (int k = 0; k < C; ++k) {
-            out[at(k)] = sum / double(2 * r + 1);
-            sum += in[at(k + r + 1)] - in[at(k - r)];
-          }
-        }
-      });
-    };
-    for (int pass = 0; pass < 2; ++pass) {
-      box(crack, tmp, true);
-      box(tmp, crack, false);
-    }
-  }
-  SpecimenMesh mesh;
+  const double z_bottom = o.film_um, z_top = o.film_um + o.thickness_um;
+  const std::size_t cells = g.cells();
   mesh.vertices.resize(2 * cells);
-  tbb::parallel_for(tbb::blocked_range<int>(0, C), [&](const tbb::blocked_range<int>& rows) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.C), [&](const tbb::blocked_range<int>& rows) {
     for (int cj = rows.begin(); cj < rows.end(); ++cj)
-      for (int ci = 0; ci < C; ++ci) {
-        const std::size_t cell = std::size_t(cj) * C + ci;
-        const glm::dvec2 p = cell_xy[cell];
+      for (int ci = 0; ci < g.C; ++ci) {
+        const std::size_t cell = g.cell(ci, cj);
+        const glm::dvec2 p = top_xy[cell];
         const double zr = o.roughness_um > 0.0 ? o.roughness_um * rough(p) : 0.0;
         mesh.vertices[cell] = {p, z_top + zr};
-        mesh.vertices[cells + cell] = {cell_xy_raw[cell] + field[cell] + crack[cell], z_bottom};
+        mesh.vertices[cells + cell] = {bottom_xy[cell] + lean.field[cell] + lean.crack[cell], z_bottom};
       }
   });
+}
 
+// Phase 9. The faces: each solid node's top and bottom quad, and a wall wherever two nodes'
+// media differ.
+void slab_faces(const SlabLattice& g, const NodeLabels& n, SpecimenMesh& mesh) {
+  const int N = g.N, C = g.C;
+  const auto L = [&](int i, int j) { return n.at(g, i, j); };
   const auto top = [&](int ci, int cj) { return unsigned(std::size_t(cj) * C + ci); };
   const auto bot = [&](int ci, int cj) { return unsigned(std::size_t(C) * C + std::size_t(cj) * C + ci); };
   const auto tri = [&](unsigned a, unsigned b, unsigned c, int front, int back) {
@@ -332,9 +383,32 @@ std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const Se
       tri(top(i - 1, j), top(i, j), bot(i, j), b, a);
       tri(top(i - 1, j), bot(i, j), bot(i - 1, j), b, a);
     }
+}
 
+}  // namespace
+
+std::unique_ptr<SpecimenScene> build_section_slab(const std::shared_ptr<const SectionMap>& map,
+                                                  const IsotropicMedium& medium, const SectionSlabOptions& o) {
+  if (!map) throw std::invalid_argument("build_section_slab: no section");
+  if (!(o.spacing_um > 0.0) || !(o.thickness_um > 0.0) || !(o.half_width_mm > 0.0) || !(o.film_um > 0.0))
+    throw std::invalid_argument("build_section_slab: spacing, thickness, window and film must be positive");
+  const std::vector<int> medium_of_domain = section_slab_media(*map);
+  std::vector<SpecimenMedium> media = slab_media(map, medium_of_domain);
+  const SlabLattice g(o);
+  const NodeLabels labels = label_nodes(*map, g, medium_of_domain, o.thickness_um);
+  SurfaceNet net = place_cell_vertices(g, labels);
+  // The bottom keeps the unsmoothed vertices: a smoothed quad can be thin enough for the lean's
+  // gradient to turn it over (measured: 20 of 80 000 bottom faces of a schist window).
+  const std::vector<glm::dvec2> cell_xy_raw = net.cell_xy;
+  relax_boundary_vertices(g, labels, net.cell_xy);
+  spread_crack_shifts(g, net);
+  BottomLean lean = bottom_lean(g, net, o);
+  smooth_crack_lean(g, lean.crack);
+  SpecimenMesh mesh;
+  slab_vertices(g, net.cell_xy, cell_xy_raw, lean, o, mesh);
+  slab_faces(g, labels, mesh);
   SpecimenLayers layers;
-  layers.liquid_um = t + 2.0 * o.film_um;
+  layers.liquid_um = o.thickness_um + 2.0 * o.film_um;
   return std::make_unique<SpecimenScene>(std::move(media), std::move(mesh), Crystal{}, medium,
                                          find_medium("N-BK7"), find_medium("air"), layers);
 }
