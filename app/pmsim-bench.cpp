@@ -11,7 +11,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/bench/bench_run.h"
 #include "core/bench/frontier_plot.h"
 #include "core/bench/response_bench.h"

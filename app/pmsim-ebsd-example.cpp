@@ -6,7 +6,7 @@
 #include <iostream>
 #include <string>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/ebsd/example_map.h"
 #include "core/ebsd/map_writer.h"
 #include "core/ebsd/read_orientation_map.h"

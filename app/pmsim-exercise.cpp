@@ -11,7 +11,7 @@
 #include <map>
 #include <set>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/base/splitmix64.h"

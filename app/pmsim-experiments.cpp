@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/base/asset_locator.h"
 #include "core/base/units.h"
 #include "core/io/image_file.h"

@@ -29,7 +29,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 
 #include "core/io/atomic_file.h"
 #include "core/io/grain_report_file.h"

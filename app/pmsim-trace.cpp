@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/base/input_error.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"

@@ -1,4 +1,4 @@
-// The command-line policy every executable shares (app/cli_policy.h), through the built binaries:
+// The command-line policy every executable shares (core/io/cli_policy.h), through the built binaries:
 // --help and -h print the usage with every option on stdout and exit 0; a usage error prints
 // "<program>: <what is wrong>" and the pointer to --help on stderr, nothing on stdout, and exits
 // 2; a repeated --set keeps every value in command-line order (the last one wins).

@@ -19,6 +19,7 @@
 #include "core/microscope/native_resolution.h"
 #include "core/microscope/sample_source.h"
 #include "core/microscope/scene_check.h"
+#include "core/microscope/scene_limits.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/progressive_renderer.h"
 #include "core/render/scale_bar.h"
@@ -413,10 +414,10 @@ void App::draw_field(Scene& edit, bool& changed) {
     probe_y_ = std::clamp((m.y - p0.y) / l.field.h, 0.0f, 1.0f);
     draw->AddCircle(m, 5, IM_COL32(255, 220, 60, 220), 16, 1.5f);
     draw_grain_overlay(draw, m.x, m.y, 0.18f * r);
-    // Ctrl + wheel: the fine focus, 1 um a notch (+ = focusing up), within scene_check's ±1000 um.
+    // Ctrl + wheel: the fine focus, 1 um a notch (+ = focusing up), within the scene's travel.
     const ImGuiIO& io = ImGui::GetIO();
     if (io.KeyCtrl && io.MouseWheel != 0.0f) {
-      edit.focus_um = std::clamp(edit.focus_um + io.MouseWheel * kFocusStepUm, -1000.0, 1000.0);
+      edit.focus_um = std::clamp(edit.focus_um + io.MouseWheel * kFocusStepUm, -kMaxFocusUm, kMaxFocusUm);
       changed = true;
     }
   }
@@ -610,7 +611,7 @@ void App::apply_action(Action action, Scene& edit, bool& changed) {
     case Action::FocusUp:
     case Action::FocusDown:
       edit.focus_um = std::clamp(edit.focus_um + (action == Action::FocusUp ? kFocusStepUm : -kFocusStepUm),
-                                 -1000.0, 1000.0);
+                                 -kMaxFocusUm, kMaxFocusUm);
       change();
       break;
     case Action::AnalyzerUp:

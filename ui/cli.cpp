@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_policy.h"
+#include "core/io/cli_policy.h"
 #include "core/base/input_error.h"
 #include "core/io/scene_file.h"
 #include "ui/asset_lists.h"

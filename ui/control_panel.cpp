@@ -9,6 +9,7 @@
 #include "core/crystal/crystal.h"
 #include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/map_section.h"
+#include "core/microscope/scene_limits.h"
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/exposure.h"
@@ -240,7 +241,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
       changed = true;
     }
     double nd = s.medium_index.value_or(kDefaultGrainMountIndex);
-    if (slider_double("Liquid n_D", nd, 1.40, 1.80, "%.3f")) {
+    if (slider_double("Liquid n_D", nd, kMinMediumIndex, kMaxMediumIndex, "%.3f")) {
       s.medium_index = nd;
       changed = true;
     }

@@ -11,7 +11,6 @@
 #include "core/crystal/mineral_crystallography.h"
 #include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/sample_source.h"
-#include "core/render/exposure.h"
 
 namespace pmsim {
 
@@ -79,21 +78,19 @@ void check_scene(const Scene& s, const std::string& file) {
   finite(s.analyzer_deg, "analyzer_deg");
   finite(s.stage_deg, "stage_deg");
   finite(s.objective.magnification, "objective.magnification");
-  require(s.objective.magnification > 0 && s.objective.magnification <= 1000, file, "objective.magnification",
-          num(s.objective.magnification), "must be in (0, 1000]");
-  // Eyepiece field numbers run from 18 mm (student eyepieces) to 26.5 mm (wide-field ones); the
-  // range allowed is wider, but a field number must be a positive length.
+  require(s.objective.magnification > 0 && s.objective.magnification <= kMaxMagnification, file,
+          "objective.magnification", num(s.objective.magnification),
+          std::string("must be in (0, ") + num(kMaxMagnification) + "]");
   finite(s.eyepiece.field_number_mm, "eyepiece.field_number_mm");
-  require(s.eyepiece.field_number_mm > 0 && s.eyepiece.field_number_mm <= 100, file,
-          "eyepiece.field_number_mm", num(s.eyepiece.field_number_mm), "must be in (0, 100] mm");
-  // The stage travel of a microscope is a few centimetres; ±1 m keeps every derived coordinate
-  // far from overflow while refusing typos such as 1e300.
+  require(s.eyepiece.field_number_mm > 0 && s.eyepiece.field_number_mm <= kMaxFieldNumberMm, file,
+          "eyepiece.field_number_mm", num(s.eyepiece.field_number_mm),
+          std::string("must be in (0, ") + num(kMaxFieldNumberMm) + "] mm");
   finite(s.stage.x_mm, "stage.x_mm");
   finite(s.stage.y_mm, "stage.y_mm");
-  require(std::abs(s.stage.x_mm) <= 1000, file, "stage.x_mm", num(s.stage.x_mm),
-          "must be in [-1000, 1000] mm");
-  require(std::abs(s.stage.y_mm) <= 1000, file, "stage.y_mm", num(s.stage.y_mm),
-          "must be in [-1000, 1000] mm");
+  const std::string travel =
+      std::string("must be in [-") + num(kMaxStageTravelMm) + ", " + num(kMaxStageTravelMm) + "] mm";
+  require(std::abs(s.stage.x_mm) <= kMaxStageTravelMm, file, "stage.x_mm", num(s.stage.x_mm), travel);
+  require(std::abs(s.stage.y_mm) <= kMaxStageTravelMm, file, "stage.y_mm", num(s.stage.y_mm), travel);
   // A dry objective and condenser collect at most sin θ < 1 in air.
   require(s.objective.na > 0 && s.objective.na < 1, file, "objective.na", num(s.objective.na),
           "numerical aperture in air must be in (0, 1)");
@@ -104,15 +101,13 @@ void check_scene(const Scene& s, const std::string& file) {
               s.condenser.aperture_na <= s.condenser.na,
           file, "condenser.aperture_na", num(s.condenser.aperture_na),
           "must be in [0, condenser.na = " + num(s.condenser.na) + "]");
-  // A fine-focus travel of ±1 mm holds any specimen on a slide; beyond that is a typo.
-  require(std::isfinite(s.focus_um) && std::abs(s.focus_um) <= 1000, file, "focus_um", num(s.focus_um),
-          "must be in [-1000, 1000] µm");
-  // The range of the standard immersion-liquid series (assets/liquids/immersion_liquids.json).
+  require(std::isfinite(s.focus_um) && std::abs(s.focus_um) <= kMaxFocusUm, file, "focus_um", num(s.focus_um),
+          std::string("must be in [-") + num(kMaxFocusUm) + ", " + num(kMaxFocusUm) + "] µm");
   if (s.sample.medium_index)
-    require(std::isfinite(*s.sample.medium_index) && *s.sample.medium_index >= 1.40 &&
-                *s.sample.medium_index <= 1.80,
+    require(std::isfinite(*s.sample.medium_index) && *s.sample.medium_index >= kMinMediumIndex &&
+                *s.sample.medium_index <= kMaxMediumIndex,
             file, "sample.medium_index", num(*s.sample.medium_index), "n_D must be in [1.40, 1.80]");
-  require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 && s.sample.thickness_um <= 1e5,
+  require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 && s.sample.thickness_um <= kMaxThicknessUm,
           file, "sample.thickness_um", num(s.sample.thickness_um), "must be in (0, 100000] µm");
   for (auto [v, key] :
        {std::pair{&s.sample.optic_axis, "sample.optic_axis"}, std::pair{&s.sample.x_axis, "sample.x_axis"},
@@ -168,17 +163,17 @@ void check_scene(const Scene& s, const std::string& file) {
   require(medium_known(s.sample.medium), file, "sample.medium", s.sample.medium, "unknown mounting medium");
   require(std::isfinite(s.compensator_position) && s.compensator_position >= 0 && s.compensator_position <= 1,
           file, "compensator_position", num(s.compensator_position), "must be in [0, 1]");
-  require(s.render.width > 0 && s.render.width <= 16384, file, "render.width", num(s.render.width),
-          "must be in 1…16384");
-  require(s.render.height > 0 && s.render.height <= 16384, file, "render.height", num(s.render.height),
-          "must be in 1…16384");
+  const std::string side = std::string("must be in 1…") + num(kMaxRenderSide);
+  require(s.render.width > 0 && s.render.width <= kMaxRenderSide, file, "render.width", num(s.render.width), side);
+  require(s.render.height > 0 && s.render.height <= kMaxRenderSide, file, "render.height", num(s.render.height), side);
   check_pixel_count(s, file, "render.height");
-  require(s.render.spp >= 0 && s.render.spp <= 1000000, file, "render.spp", num(s.render.spp),
+  require(s.render.spp >= 0 && s.render.spp <= kMaxSpp, file, "render.spp", num(s.render.spp),
           "must be ≥ 0 (0: until converged)");
-  require(s.render.wavelengths >= 0 && s.render.wavelengths <= 4001, file, "render.wavelengths",
+  require(s.render.wavelengths >= 0 && s.render.wavelengths <= kMaxWavelengths, file, "render.wavelengths",
           num(s.render.wavelengths), "must be in 0…4001 (0: until converged)");
   require(s.render.single_wavelength_nm == 0 ||
-              (s.render.single_wavelength_nm >= 380 && s.render.single_wavelength_nm <= 780),
+              (s.render.single_wavelength_nm >= kMinSingleWavelengthNm &&
+               s.render.single_wavelength_nm <= kMaxSingleWavelengthNm),
           file, "render.single_wavelength_nm", num(s.render.single_wavelength_nm),
           "must be 0 (white light) or within 380–780 nm");
   require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file, "render.tolerance",
@@ -186,7 +181,7 @@ void check_scene(const Scene& s, const std::string& file) {
   require(std::isfinite(s.render.exposure_ev) && s.render.exposure_ev >= kMinExposureEv &&
               s.render.exposure_ev <= kMaxExposureEv,
           file, "render.exposure_ev", num(s.render.exposure_ev), "must be in −10…10 (stops)");
-  require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= 10, file, "optics.lens_depth",
+  require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= kMaxLensDepth, file, "optics.lens_depth",
           num(s.optics.lens_depth), "must be in 0…10");
 }
 

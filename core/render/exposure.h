@@ -7,13 +7,10 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "core/microscope/scene_limits.h"  // kMinExposureEv, kMaxExposureEv
 #include "core/spectrum/colour_vision.h"
 
 namespace pmsim {
-
-// The range scene_check accepts: ±10 stops (a factor of ~1000 either way) covers every image
-// pmsim makes, from a near-extinct section to the brightest fringe.
-constexpr double kMinExposureEv = -10.0, kMaxExposureEv = 10.0;
 
 // 2^ev, the linear gain of `ev` stops.
 double exposure_gain(double ev);

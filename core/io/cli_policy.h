@@ -3,7 +3,8 @@
 // pmsim-bench, pmsim-experiments, pmsim-ebsd-example), all parsed with CLI11: --help / -h prints
 // the usage on stdout and exits 0; --version prints the version and exits 0; a usage error prints "<program>: <what is wrong>" and a pointer to --help on
 // stderr and exits 2, the exit code of every bad input (scene, lens, key or value) in pmsim.
-// Header-only so that both the app/ executables and the ui library (ui/cli.cpp) share it.
+// Header-only, in core so that both the app/ executables and the ui library (ui/cli.cpp) share it
+// without ui/ including app/ (app/pmsim includes ui/).
 #include <CLI/CLI.hpp>
 
 #include "core/base/version.h"
