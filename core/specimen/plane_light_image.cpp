@@ -158,66 +158,106 @@ std::vector<std::uint8_t> pixels_near_fragments(const SpecimenScene& scene, int 
   return near;
 }
 
-}  // namespace
+// One backward render's state, shared by its phases: the spectral plan, the pupil's geometry and
+// strata, the empty field's exposure and colours, the pixels that can see a fragment and the
+// passes' accumulators.
+struct BackwardRender {
+  const SpecimenScene& scene;
+  const PlaneLightOptions& o;
+  InterfaceCounters* counters;
+  const std::atomic<bool>* cancel;
+  std::mutex counter_mutex;
 
-double objective_focus_z_air_um(const SpecimenScene& scene, double focus_um) {
-  const SpecimenLayers& L = scene.layers();
-  return scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLiquidDNm) -
-         (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLiquidDNm) + focus_um;
-}
+  // The spectrum: nb bands; a pass traces the reference λ and bands_per_pass bands, one of every
+  // G neighbours in turn.
+  bool mono = false, analyzer_in = false;
+  int nb = 1, bands_per_pass = 1, G = 1;
+  SpectralBands bands;
+  glm::dvec3 white{0.0};
+  double lambda_ref = 555.0;
 
-RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& o,
-                               const std::function<void(const RenderImage&)>& progress,
-                               InterfaceCounters* counters, const std::atomic<bool>* cancel) {
-  const auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto elapsed_ms = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
-  const bool mono = o.single_wavelength_nm > 0.0;
-  const bool analyzer_in = o.analyzer_in && !o.scalar_tracer;
-  const int nb = mono ? 1 : std::max(analyzer_in ? kCrossedPolarBands : 1, o.bands);
-  // Bands traced a pass besides the reference: one in plane light (the control variate's
-  // difference is small there), 8 with the analyzer in (the colour oscillates across the bands),
-  // one of every G neighbours in turn.
-  const int bands_per_pass = mono ? 1 : std::min(nb, analyzer_in ? 8 : 1);
-  const int G = std::max(1, nb / bands_per_pass);
-  const SpectralBands bands = spectral_bands(nb, o.illuminant, !mono);
-  const std::vector<glm::dvec3>& W = bands.weight;
-  const std::vector<double>& band_lo = bands.lo_nm;
-  const std::vector<double>& band_width = bands.width_nm;
-  const glm::dvec3 w_sum = bands.sum;
-  const glm::dvec3 white = illuminant_white_xyz(o.illuminant);
-  // The control variate's wavelength: the photopic peak (mono: the line itself, traced once).
-  const double lambda_ref = mono ? o.single_wavelength_nm : 555.0;
+  Geometry g{};
+  int strata = 1;
+  double stratum_weight[2] = {1.0, 0.0};
 
-  Geometry g;
-  g.na = o.objective_na;
-  g.nac = effective_condenser_na(o.condenser_aperture_na);
-  g.r_in = std::min(g.nac, g.na);
-  g.a_in = (g.r_in / g.na) * (g.r_in / g.na);
-  g.annulus = g.r_in < g.na;
-  const SpecimenLayers& L = scene.layers();
-  g.z_air = objective_focus_z_air_um(scene, o.focus_um);
-  g.z_start = scene.cover_top_z_um() + 10.0 + std::max(0.0, g.z_air - scene.cover_top_z_um());
-  g.c = std::cos(-o.stage_rad);
-  g.s = std::sin(-o.stage_rad);
-  g.vibration = rotate_z({std::cos(o.polarizer_rad), std::sin(o.polarizer_rad), 0.0}, g.c, g.s);
-  g.analyzer = rotate_z({std::cos(o.analyzer_rad), std::sin(o.analyzer_rad), 0.0}, g.c, g.s);
-  g.analyzer_in = analyzer_in;
-  g.scalar = o.scalar_tracer;
-  const int strata = g.annulus ? 2 : 1;
-  const double stratum_weight[2] = {g.annulus ? g.a_in : 1.0, 1.0 - g.a_in};
+  // The empty field per band (and at λ_ref) with the analyzer out (the exposure) and in.
+  std::vector<double> background, empty_polars;
+  double background_ref = 0.0, empty_polars_ref = 0.0;
+  glm::dvec3 empty_xyz{0.0}, empty_rgb{0.0}, open_xyz{0.0}, open_rgb{0.0};
+  double empty_ref = 0.0;
+
+  int w = 0, h = 0;
+  std::size_t npx = 0;
+  glm::dvec2 centre{0.0};
+  double reach = 0.0;
+
+  // Per active pixel (one that can see a fragment) and half: the passes' sums (see find_active_pixels).
+  std::vector<std::uint32_t> active;
+  std::size_t na = 0;
+  std::vector<double> ref_acc[2];
+  std::vector<float> diff_acc[2];
+  std::vector<int> band_offset;
+
+  BackwardRender(const SpecimenScene& scene_, const PlaneLightOptions& o_, InterfaceCounters* counters_,
+                 const std::atomic<bool>* cancel_)
+      : scene(scene_), o(o_), counters(counters_), cancel(cancel_) {
+    plan_spectrum();
+    set_up_pupil();
+    expose_empty_field();
+    w = o.width;
+    h = o.height;
+    npx = std::size_t(w) * h;
+    centre = o.centre_um;
+    reach = mono ? cone_reach_um(scene, g.na, g.z_air, o.single_wavelength_nm, o.single_wavelength_nm)
+                 : cone_reach_um(scene, g.na, g.z_air, kVisibleMinNm, kVisibleMaxNm);
+    empty_field_colours();
+  }
+
+  bool cancelled() const { return cancel_raised(cancel); }
+
+  void plan_spectrum() {
+    mono = o.single_wavelength_nm > 0.0;
+    analyzer_in = o.analyzer_in && !o.scalar_tracer;
+    nb = mono ? 1 : std::max(analyzer_in ? kCrossedPolarBands : 1, o.bands);
+    // Bands traced a pass besides the reference: one in plane light (the control variate's
+    // difference is small there), 8 with the analyzer in (the colour oscillates across the bands),
+    // one of every G neighbours in turn.
+    bands_per_pass = mono ? 1 : std::min(nb, analyzer_in ? 8 : 1);
+    G = std::max(1, nb / bands_per_pass);
+    bands = spectral_bands(nb, o.illuminant, !mono);
+    white = illuminant_white_xyz(o.illuminant);
+    // The control variate's wavelength: the photopic peak (mono: the line itself, traced once).
+    lambda_ref = mono ? o.single_wavelength_nm : 555.0;
+  }
+
+  void set_up_pupil() {
+    g.na = o.objective_na;
+    g.nac = effective_condenser_na(o.condenser_aperture_na);
+    g.r_in = std::min(g.nac, g.na);
+    g.a_in = (g.r_in / g.na) * (g.r_in / g.na);
+    g.annulus = g.r_in < g.na;
+    g.z_air = objective_focus_z_air_um(scene, o.focus_um);
+    g.z_start = scene.cover_top_z_um() + 10.0 + std::max(0.0, g.z_air - scene.cover_top_z_um());
+    g.c = std::cos(-o.stage_rad);
+    g.s = std::sin(-o.stage_rad);
+    g.vibration = rotate_z({std::cos(o.polarizer_rad), std::sin(o.polarizer_rad), 0.0}, g.c, g.s);
+    g.analyzer = rotate_z({std::cos(o.analyzer_rad), std::sin(o.analyzer_rad), 0.0}, g.c, g.s);
+    g.analyzer_in = analyzer_in;
+    g.scalar = o.scalar_tracer;
+    strata = g.annulus ? 2 : 1;
+    stratum_weight[0] = g.annulus ? g.a_in : 1.0;
+    stratum_weight[1] = 1.0 - g.a_in;
+  }
 
   // Exposure: the same stack without fragments, at the same λ and strata. Its paths cross plane
   // faces only, so T is a smooth function of the pupil point and λ: a midpoint rule (16 radii ×
   // 4 azimuths × 2 λ a band) is exact far below any visible difference.
   // With the analyzer in, the empty field between the polars (about 0 when crossed: what the
   // plane faces' Fresnel terms turn of the vibration) is what a pixel far from every fragment shows.
-  std::vector<double> background(nb, 0.0), empty_polars(nb, 0.0);
-  double background_ref = 0.0, empty_polars_ref = 0.0;
-  {
-    const SpecimenScene empty({}, scene.mineral(), scene.liquid(), scene.glass(), scene.air(), L);
+  void expose_empty_field() {
+    background.assign(nb, 0.0);
+    empty_polars.assign(nb, 0.0);
+    const SpecimenScene empty({}, scene.mineral(), scene.liquid(), scene.glass(), scene.air(), scene.layers());
     const auto empty_field = [&](double lo, double width, int n_lambda, bool with_analyzer) {
       constexpr int kRadii = 16, kAzimuths = 4;
       double v = 0.0;
@@ -237,7 +277,7 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
       std::vector<double>& field = with_analyzer ? empty_polars : background;
       for (int b = 0; b < nb; ++b)
         field[b] = mono ? empty_field(o.single_wavelength_nm, 0.0, 1, with_analyzer)
-                        : empty_field(band_lo[b], band_width[b], 2, with_analyzer);
+                        : empty_field(bands.lo_nm[b], bands.width_nm[b], 2, with_analyzer);
       (with_analyzer ? empty_polars_ref : background_ref) =
           mono ? field[0] : empty_field(lambda_ref, 0.0, 1, with_analyzer);
     }
@@ -247,45 +287,39 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
     }
   }
 
-  const int w = o.width, h = o.height;
-  const std::size_t npx = std::size_t(w) * h;
-  const glm::dvec2 centre = o.centre_um;
-  const double reach = mono ? cone_reach_um(scene, g.na, g.z_air, o.single_wavelength_nm, o.single_wavelength_nm)
-                            : cone_reach_um(scene, g.na, g.z_air, kVisibleMinNm, kVisibleMaxNm);
-  // The empty field's colour: 1 in plane light (the exposure), the polars' own value with the
-  // analyzer in.
-  glm::dvec3 empty_xyz(0.0);
-  for (int b = 0; b < nb; ++b) {
-    const double v = background[b] > 0.0 ? empty_polars[b] / background[b] : 0.0;
-    empty_xyz += mono ? v * white : v * W[b];
+  void empty_field_colours() {
+    // The empty field's colour: 1 in plane light (the exposure), the polars' own value with the
+    // analyzer in.
+    for (int b = 0; b < nb; ++b) {
+      const double v = background[b] > 0.0 ? empty_polars[b] / background[b] : 0.0;
+      empty_xyz += mono ? v * white : v * bands.weight[b];
+    }
+    empty_rgb = mono ? glm::dvec3(empty_xyz.y / white.y) : xyz_to_linear_srgb(empty_xyz);
+    empty_ref = background_ref > 0.0 ? empty_polars_ref / background_ref : 0.0;
+    // The grey preview's white: the empty field with the analyzer out.
+    open_xyz = mono ? white : bands.sum;
+    open_rgb = mono ? glm::dvec3(1.0) : xyz_to_linear_srgb(bands.sum);
   }
-  const glm::dvec3 empty_rgb = mono ? glm::dvec3(empty_xyz.y / white.y) : xyz_to_linear_srgb(empty_xyz);
-  const double empty_ref = background_ref > 0.0 ? empty_polars_ref / background_ref : 0.0;
-  // The grey preview's white: the empty field with the analyzer out.
-  const glm::dvec3 open_xyz = mono ? white : w_sum;
-  const glm::dvec3 open_rgb = mono ? glm::dvec3(1.0) : xyz_to_linear_srgb(w_sum);
 
-  RenderImage img;
-  img.width = w;
-  img.height = h;
-  img.rgb.assign(npx * 3, 0.0f);
-  img.xyz.assign(npx * 3, 0.0f);
-  img.wavelengths = nb;
-  img.model_report = o.scalar_tracer ? "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized "
-                                       "light, one linear vibration"
-                     : analyzer_in ? "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
-                                     "splitting, coherent sum), analyzer in"
-                                   : "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
-                                     "splitting), plane-polarized light";
-  std::mutex counter_mutex;
-  const auto point_of = [&](int px, int py, double jx, double jy, double um_per_px, int ww, int hh) {
+  const char* model_report() const {
+    return o.scalar_tracer ? "grain mount: backward-traced refraction (Embree, Fresnel), plane-polarized "
+                             "light, one linear vibration"
+           : analyzer_in   ? "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                             "splitting, coherent sum), analyzer in"
+                           : "grain mount: backward-traced refraction (Embree, exact Fresnel, eigenmode "
+                             "splitting), plane-polarized light";
+  }
+
+  glm::dvec2 point_of(int px, int py, double jx, double jy, double um_per_px, int ww, int hh) const {
     const glm::dvec3 f{(px + jx - 0.5 * ww) * um_per_px, (0.5 * hh - (py + jy)) * um_per_px, 0.0};
     const glm::dvec3 p = rotate_z(f, g.c, g.s);
     return centre + glm::dvec2(p.x, p.y);
-  };
+  }
 
   // The preview: 1/f of the size, one inner-stratum path a pixel at λ_ref, grey, spread bilinearly.
-  if (o.preview_factor > 1 && w >= 2 * o.preview_factor && h >= 2 * o.preview_factor) {
+  // False: cancelled (img is to be returned as it is).
+  bool preview(RenderImage& img, const RenderClock& clock, const std::function<void(const RenderImage&)>& progress) {
+    if (!(o.preview_factor > 1 && w >= 2 * o.preview_factor && h >= 2 * o.preview_factor)) return true;
     const int f = o.preview_factor;
     const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
     const double cum = o.um_per_px * double(w) / cw;
@@ -303,35 +337,28 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
                         background_ref;
         }
     });
-    if (cancelled()) {
-      img.converged = false;
-      return img;
-    }
-    spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
-    img.time_ms = elapsed_ms();
-    if (progress) progress(img);
+    return show_preview(coarse, cw, ch, f, open_xyz, open_rgb, img, clock, progress, cancel);
   }
 
   // The pixels that can see a fragment; every other one is the empty field (1 in plane light) from
   // the start.
-  const auto near = pixels_near_fragments(scene, w, h, o.um_per_px, centre, g.c, g.s, reach);
-  std::vector<std::uint32_t> active;
-  for (std::size_t pix = 0; pix < npx; ++pix)
-    if (near[pix]) active.push_back(std::uint32_t(pix));
-  const std::size_t na = active.size();
-  const int traces = mono ? 1 : 1 + bands_per_pass;
-  // Accumulators per half (even/odd passes), per active pixel: Σ T(λ_ref) per stratum, and per
-  // band and stratum Σ (T(λ_b) − T(λ_ref)) over the passes that traced band b (pass j traces the
-  // bands b ≡ j + offset mod G).
-  std::vector<double> ref_acc[2] = {std::vector<double>(na * strata, 0.0), std::vector<double>(na * strata, 0.0)};
-  std::vector<float> diff_acc[2];
-  if (!mono)
-    for (auto& d : diff_acc) d.assign(na * nb * strata, 0.0f);
-  std::vector<int> band_offset(na);
-  for (std::size_t a = 0; a < na; ++a) band_offset[a] = int(splitmix64(o.seed ^ (active[a] * 0x2545f4914f6cdd1dull)) % G);
+  void find_active_pixels() {
+    const auto near = pixels_near_fragments(scene, w, h, o.um_per_px, centre, g.c, g.s, reach);
+    for (std::size_t pix = 0; pix < npx; ++pix)
+      if (near[pix]) active.push_back(std::uint32_t(pix));
+    na = active.size();
+    // Accumulators per half (even/odd passes), per active pixel: Σ T(λ_ref) per stratum, and per
+    // band and stratum Σ (T(λ_b) − T(λ_ref)) over the passes that traced band b (pass j traces the
+    // bands b ≡ j + offset mod G).
+    for (auto& r : ref_acc) r.assign(na * strata, 0.0);
+    if (!mono)
+      for (auto& d : diff_acc) d.assign(na * nb * strata, 0.0f);
+    band_offset.resize(na);
+    for (std::size_t a = 0; a < na; ++a) band_offset[a] = int(splitmix64(o.seed ^ (active[a] * 0x2545f4914f6cdd1dull)) % G);
+  }
 
   // One half's (h = 0, 1) or both halves' (h = 2) colour of active pixel a after `passes` passes.
-  const auto develop = [&](std::size_t a, int passes, int half) {
+  glm::dvec3 develop(std::size_t a, int passes, int half) const {
     const int m[2] = {(passes + 1) / 2, passes / 2};
     glm::dvec3 xyz(0.0);
     const int h0 = half == 2 ? 0 : half, h1 = half == 2 ? 1 : half;
@@ -352,17 +379,14 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         v += stratum_weight[st] * (ref / n_ref + (n_b > 0 ? diff / n_b : 0.0));
       }
       v = background[b] > 0.0 ? v / background[b] : 0.0;
-      xyz += mono ? v * white : v * W[b];
+      xyz += mono ? v * white : v * bands.weight[b];
     }
     return xyz;
-  };
+  }
 
-  const int spp_per_pass = strata * traces;
-  const int passes = std::max(1, (o.spp + spp_per_pass - 1) / spp_per_pass);
-  // A split-half estimate means something once each half has traced every band.
-  const int min_passes_for_estimate = mono ? 2 : 2 * G;
-  std::optional<double> last_err;
-  for (int pass = 0; pass < passes; ++pass) {
+  // Pass `pass`: every active pixel's strata at the pass's Kronecker point, traced at λ_ref and at
+  // the bands of the pixel's group this pass, into the pass's half.
+  void trace_pass(int pass) {
     const int half = pass % 2, j = pass / 2;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, na, 64), [&](const tbb::blocked_range<std::size_t>& r) {
       InterfaceCounters local;
@@ -379,8 +403,8 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
           ref_acc[half][a * strata + st] += t_ref;
           if (!mono)
             for (int b = group; b < nb; b += G) {
-              const double t_b = sample_path(scene, g, p, st, band_lo[b] + band_width[b] * d.v[4], d.v[2], d.v[3],
-                                             g.analyzer_in, lc);
+              const double t_b = sample_path(scene, g, p, st, bands.lo_nm[b] + bands.width_nm[b] * d.v[4], d.v[2],
+                                             d.v[3], g.analyzer_in, lc);
               diff_acc[half][(a * nb + b) * strata + st] += float(t_b - t_ref);
             }
         }
@@ -390,46 +414,62 @@ RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptio
         counters->add(local);
       }
     });
-    if (cancelled()) {
-      img.converged = false;
-      return img;
-    }
-    const int done = pass + 1;
-    // Develop: the empty field where no ray can meet a fragment, the estimate elsewhere.
-    if (pass == 0)
+  }
+
+  // Develop: the empty field where no ray can meet a fragment, the estimate elsewhere.
+  void develop_image(RenderImage& img, int done) const {
+    if (done == 1)
       for (std::size_t pix = 0; pix < npx; ++pix)
         for (int c = 0; c < 3; ++c) img.xyz[pix * 3 + c] = float(empty_xyz[c]), img.rgb[pix * 3 + c] = float(empty_rgb[c]);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, na, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t a = r.begin(); a < r.end(); ++a) {
-        const glm::dvec3 xyz = develop(a, done, 2);
-        const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / white.y) : xyz_to_linear_srgb(xyz);
-        const std::size_t pix = active[a];
-        for (int c = 0; c < 3; ++c) img.xyz[pix * 3 + c] = float(xyz[c]), img.rgb[pix * 3 + c] = float(rgb[c]);
-      }
-    });
-    // Split half: mean ΔE00 between the halves over the whole image (inactive pixels: 0), over at
-    // most 65536 active pixels. For Gaussian noise the whole's error would be half of it; the light
-    // a stopped-down condenser lets through the annulus is heavy-tailed (rare rays of ~68 empty
-    // fields), and half of it was measured 2–3× below the error against a 16× longer render, so
-    // the estimate is the halves' difference itself: a render stops late rather than early.
-    std::optional<double> err;
-    if (na == 0) {
-      err = 0.0;
-    } else if (done >= min_passes_for_estimate && done % 2 == 0) {
-      err = split_half_de2000(na, [&](std::size_t a, int hf) { return develop(a, done, hf); }, white) *
-            (double(na) / double(npx));
-    }
-    // An odd pass keeps the last even pass's estimate (the halves are only balanced after even ones).
-    if (err) last_err = err;
-    img.error_estimate = last_err;
-    img.passes = done + (o.preview_factor > 1 ? 1 : 0);
-    img.samples_per_pixel = double(done * spp_per_pass);
-    const bool good_enough = o.tolerance_de2000 > 0.0 && err && *err < o.tolerance_de2000;
-    img.converged = done == passes || good_enough;
-    img.time_ms = elapsed_ms();
-    if (progress) progress(img);
-    if (good_enough) break;
+    develop_pixels(
+        img, na, 256, [&](std::size_t a) { return std::size_t(active[a]); },
+        [&](std::size_t a) { return develop(a, done, 2); }, mono, white);
   }
+
+  // Split half: mean ΔE00 between the halves over the whole image (inactive pixels: 0), over at
+  // most 65536 active pixels. For Gaussian noise the whole's error would be half of it; the light
+  // a stopped-down condenser lets through the annulus is heavy-tailed (rare rays of ~68 empty
+  // fields), and half of it was measured 2–3× below the error against a 16× longer render, so
+  // the estimate is the halves' difference itself: a render stops late rather than early.
+  std::optional<double> split_half_estimate(int done) const {
+    // A split-half estimate means something once each half has traced every band.
+    const int min_passes_for_estimate = mono ? 2 : 2 * G;
+    if (na == 0) return 0.0;
+    if (done >= min_passes_for_estimate && done % 2 == 0)
+      return split_half_de2000(na, [&](std::size_t a, int hf) { return develop(a, done, hf); }, white) *
+             (double(na) / double(npx));
+    return std::nullopt;
+  }
+};
+
+}  // namespace
+
+double objective_focus_z_air_um(const SpecimenScene& scene, double focus_um) {
+  const SpecimenLayers& L = scene.layers();
+  return scene.cover_top_z_um() - L.cover_um / scene.glass().n(kLiquidDNm) -
+         (L.liquid_um - scene.mid_plane_z_um()) / scene.liquid().n(kLiquidDNm) + focus_um;
+}
+
+RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& o,
+                               const std::function<void(const RenderImage&)>& progress,
+                               InterfaceCounters* counters, const std::atomic<bool>* cancel) {
+  const RenderClock clock;
+  BackwardRender r(scene, o, counters, cancel);
+  RenderImage img = blank_plane_light_image(r.w, r.h, r.nb, r.model_report());
+  if (!r.preview(img, clock, progress)) return img;
+  r.find_active_pixels();
+
+  ProgressivePasses p;
+  const int traces = r.mono ? 1 : 1 + r.bands_per_pass;
+  const int spp_per_pass = r.strata * traces;
+  p.passes = std::max(1, (o.spp + spp_per_pass - 1) / spp_per_pass);
+  p.preview_passes = o.preview_factor > 1 ? 1 : 0;
+  p.samples_per_pass = spp_per_pass;
+  p.tolerance_de2000 = o.tolerance_de2000;
+  p.trace_pass = [&](int pass) { r.trace_pass(pass); };
+  p.develop_image = [&](int done) { r.develop_image(img, done); };
+  p.split_half_estimate = [&](int done) { return r.split_half_estimate(done); };
+  run_progressive_passes(p, img, clock, progress, cancel);
   return img;
 }
 

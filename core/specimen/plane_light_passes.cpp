@@ -1,6 +1,7 @@
 #include "core/specimen/plane_light_passes.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,6 +10,18 @@
 #include "core/spectrum/color.h"
 
 namespace pmsim {
+
+RenderImage blank_plane_light_image(int w, int h, int bands, std::string model_report) {
+  const std::size_t npx = std::size_t(w) * h;
+  RenderImage img;
+  img.width = w;
+  img.height = h;
+  img.rgb.assign(npx * 3, 0.0f);
+  img.xyz.assign(npx * 3, 0.0f);
+  img.wavelengths = bands;
+  img.model_report = std::move(model_report);
+  return img;
+}
 
 void spread_preview(const std::vector<double>& coarse, int cw, int ch, int f, const glm::dvec3& open_xyz,
                     const glm::dvec3& open_rgb, RenderImage& img) {
@@ -36,6 +49,32 @@ void spread_preview(const std::vector<double>& coarse, int cw, int ch, int f, co
   img.converged = false;
 }
 
+bool show_preview(const std::vector<double>& coarse, int cw, int ch, int f, const glm::dvec3& open_xyz,
+                  const glm::dvec3& open_rgb, RenderImage& img, const RenderClock& clock,
+                  const std::function<void(const RenderImage&)>& progress, const std::atomic<bool>* cancel) {
+  if (cancel_raised(cancel)) {
+    img.converged = false;
+    return false;
+  }
+  spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
+  img.time_ms = clock.elapsed_ms();
+  if (progress) progress(img);
+  return true;
+}
+
+void develop_pixels(RenderImage& img, std::size_t n, std::size_t grain,
+                    const std::function<std::size_t(std::size_t)>& pixel_of,
+                    const std::function<glm::dvec3(std::size_t)>& xyz_of, bool mono, const glm::dvec3& white) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      const glm::dvec3 xyz = xyz_of(i);
+      const glm::dvec3 rgb = mono ? glm::dvec3(xyz.y / white.y) : xyz_to_linear_srgb(xyz);
+      const std::size_t pix = pixel_of(i);
+      for (int c = 0; c < 3; ++c) img.xyz[pix * 3 + c] = float(xyz[c]), img.rgb[pix * 3 + c] = float(rgb[c]);
+    }
+  });
+}
+
 double split_half_de2000(std::size_t n, const std::function<glm::dvec3(std::size_t, int)>& half_xyz,
                          const glm::dvec3& white) {
   if (n == 0) return 0.0;
@@ -52,6 +91,32 @@ double split_half_de2000(std::size_t n, const std::function<glm::dvec3(std::size
       },
       std::plus<double>());
   return sum / double(m);
+}
+
+void run_progressive_passes(const ProgressivePasses& p, RenderImage& img, const RenderClock& clock,
+                            const std::function<void(const RenderImage&)>& progress,
+                            const std::atomic<bool>* cancel) {
+  std::optional<double> last_err;
+  for (int pass = 0; pass < p.passes; ++pass) {
+    p.trace_pass(pass);
+    if (cancel_raised(cancel)) {
+      img.converged = false;
+      return;
+    }
+    const int done = pass + 1;
+    p.develop_image(done);
+    const std::optional<double> err = p.split_half_estimate(done);
+    // An odd pass keeps the last even pass's estimate (the halves are only balanced after even ones).
+    if (err) last_err = err;
+    img.error_estimate = last_err;
+    img.passes = done + p.preview_passes;
+    img.samples_per_pixel = done * p.samples_per_pass;
+    const bool good_enough = p.tolerance_de2000 > 0.0 && err && *err < p.tolerance_de2000;
+    img.converged = done == p.passes || good_enough;
+    img.time_ms = clock.elapsed_ms();
+    if (progress) progress(img);
+    if (good_enough) break;
+  }
 }
 
 }  // namespace pmsim
