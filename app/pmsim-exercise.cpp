@@ -116,6 +116,7 @@ struct IdentifyOptions {
 
 void add_identify_options(CLI::App* id, IdentifyOptions& o, std::map<std::string, std::string>& values) {
   const std::pair<const char*, const char*> obs[] = {
+      {"opaque", "yes|no: black in plane and crossed light (magnetite, ilmenite)"},
       {"relief", "relief against n = 1.54: low|moderate|high|very_high"},
       {"relief-sign", "positive|negative (Becke line into or out of the grain against 1.54)"},
       {"n", "an index measured in liquids, N or LOW:HIGH"},

@@ -38,6 +38,7 @@ std::vector<std::string> twin_words() {
 
 const std::vector<ObservationView>& plane_light() {
   static const std::vector<ObservationView> v = {
+      {"opaque", "Opaque", {"yes", "no"}, "", "black in plane and crossed light (magnetite, ilmenite)"},
       {"relief", "Relief", {"low", "moderate", "high", "very_high"}, "", "against the mount, n = 1.54"},
       {"relief-sign", "Relief sign", {"positive", "negative"}, "", "Becke line into (positive) or out of the grain"},
       {"n", "n (liquids)", {}, "1.55 or 1.54:1.56", "an index measured in immersion liquids, N or LOW:HIGH"},
@@ -64,8 +65,8 @@ const std::vector<ObservationView>& crossed_polars() {
 }  // namespace
 
 const std::vector<std::string>& identify_keys() {
-  static const std::vector<std::string> keys = {"relief", "relief-sign", "n", "coloured", "pleochroic",
-                                                "order", "thickness", "character", "sign", "two-v",
+  static const std::vector<std::string> keys = {"opaque", "relief", "relief-sign", "n", "coloured",
+                                                "pleochroic", "order", "thickness", "character", "sign", "two-v",
                                                 "extinction", "extinction-angle", "elongation", "cleavages",
                                                 "twin"};
   return keys;
@@ -92,8 +93,8 @@ void App::update_identify() {
 bool App::identify_observation(const std::string& key, const std::string& value) {
   const auto& keys = identify_keys();
   if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-    fail(InputError("", "identify", key, "not an observation (relief, relief-sign, n, coloured, pleochroic, order, "
-                                         "thickness, character, sign, two-v, extinction, extinction-angle, "
+    fail(InputError("", "identify", key, "not an observation (opaque, relief, relief-sign, n, coloured, pleochroic, "
+                                         "order, thickness, character, sign, two-v, extinction, extinction-angle, "
                                          "elongation, cleavages, twin)")
              .what());
     return false;

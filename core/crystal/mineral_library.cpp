@@ -8,13 +8,16 @@
 //        where N is a number (constant) or {"model": "ghosh1999", "A","B","C","D","E"}
 //        or {"model": "cauchy", "A","B","C"} (λ in µm),
 //    "absorption": {"source": "...", "reference_thickness_um": 30, "wavelength_nm": [...],
-//        "transmittance": {"o": [...], "e": [...]} or {"alpha": [...], "beta": [...], "gamma": [...]}},
+//        "transmittance": {"o": [...], "e": [...]} or {"alpha": [...], "beta": [...], "gamma": [...]}}
+//        or {"source": "...", "wavelength_nm": [...], "extinction_coefficient_k": {axes as above}}
+//        (the imaginary part of the complex index, μ = 4πk/λ: opaque minerals),
 //    "rotatory_power": {"source": "...", "A_deg_um2_per_mm": A, "lambda0_um": l0,
 //        "handedness": "right" | "left"},
 //    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used),
 //    "series": a solid solution's indices against composition (core/crystal/mineral_series.h),
 //    crystallography keys: see core/crystal/mineral_crystallography.h}
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -134,6 +137,60 @@ Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystall
 
 namespace {
 
+// The "absorption" block as μ(λ) per µm along X, Y, Z. Two forms, each with "wavelength_nm":
+// "transmittance" of a "reference_thickness_um" slab (T = e^(−μd), the form of the coloured
+// silicates), or "extinction_coefficient_k", the imaginary part of the complex index n + ik as
+// optical-constant tables give it (opaque oxides: Querry 1985), with μ = 4πk/λ (the intensity
+// absorption coefficient; Born & Wolf §14.1, Bohren & Huffman 1983 §2.8).
+std::array<AbsorptionTable, 3> read_absorption(const Reader& r, const json& ab, const std::string& sym,
+                                               const std::vector<std::string>& axis_keys) {
+  if (!ab.is_object()) r.fail("absorption", ab, "expected an object");
+  r.only_keys(ab, "absorption.",
+              {"source", "reference_thickness_um", "wavelength_nm", "transmittance", "extinction_coefficient_k"});
+  const bool by_k = ab.contains("extinction_coefficient_k");
+  if (by_k == ab.contains("transmittance"))
+    r.fail("absorption", json(), "give either transmittance (with reference_thickness_um) or extinction_coefficient_k");
+  double d_um = 0.0;
+  if (!by_k) {
+    d_um = r.number(r.need(ab, "reference_thickness_um", "absorption.reference_thickness_um"),
+                    "absorption.reference_thickness_um");
+    if (!(d_um > 0.0)) r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
+  } else if (ab.contains("reference_thickness_um")) {
+    r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"],
+           "not used with extinction_coefficient_k (k is a property of the material, not of a slab)");
+  }
+  const auto wl = r.numbers(r.need(ab, "wavelength_nm", "absorption.wavelength_nm"), "absorption.wavelength_nm");
+  for (size_t i = 1; i < wl.size(); ++i)
+    if (!(wl[i] > wl[i - 1])) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "must increase");
+  for (double w : wl)
+    if (!(w > 0.0)) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "wavelengths must be > 0");
+  const std::string block = by_k ? "absorption.extinction_coefficient_k" : "absorption.transmittance";
+  const json& tr = r.need(ab, by_k ? "extinction_coefficient_k" : "transmittance", block);
+  if (sym == "uniaxial")
+    r.only_keys(tr, block + ".", {"o", "e"});
+  else if (sym == "biaxial")
+    r.only_keys(tr, block + ".", {"alpha", "beta", "gamma"});
+  else
+    r.only_keys(tr, block + ".", {"n"});
+  std::array<AbsorptionTable, 3> t;
+  for (int k = 0; k < 3; ++k) {
+    const std::string key = block + "." + axis_keys[k];
+    const auto v = r.numbers(r.need(tr, axis_keys[k], key), key);
+    if (v.size() != wl.size()) r.fail(key, tr[axis_keys[k]], "needs one value per wavelength");
+    t[k].wavelength_nm = wl;
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (by_k) {
+        if (!(v[i] >= 0.0 && v[i] <= 10.0)) r.fail(key, tr[axis_keys[k]], "k must be in [0, 10]");
+        t[k].mu_per_um.push_back(4.0 * kPi * v[i] / (wl[i] * 1e-3));  // μ = 4πk/λ, λ in µm
+      } else {
+        if (!(v[i] > 0.0 && v[i] <= 1.0)) r.fail(key, tr[axis_keys[k]], "transmittance must be in (0, 1]");
+        t[k].mu_per_um.push_back(-std::log(v[i]) / d_um);  // Beer–Lambert: T = e^(−μd)
+      }
+    }
+  }
+  return t;
+}
+
 Crystal load_mineral(const std::string& path, std::optional<MineralCrystallography>* crystallography,
                      std::optional<MineralSeries>* series) {
   const json j = read_json_file(path, "mineral file");
@@ -186,35 +243,7 @@ Crystal load_mineral(const std::string& path, std::optional<MineralCrystallograp
   }
 
   if (j.contains("absorption")) {
-    const json& ab = j["absorption"];
-    if (!ab.is_object()) r.fail("absorption", ab, "expected an object");
-    r.only_keys(ab, "absorption.", {"source", "reference_thickness_um", "wavelength_nm", "transmittance"});
-    const double d_um = r.number(r.need(ab, "reference_thickness_um", "absorption.reference_thickness_um"),
-                                 "absorption.reference_thickness_um");
-    if (!(d_um > 0.0))
-      r.fail("absorption.reference_thickness_um", ab["reference_thickness_um"], "must be > 0");
-    const auto wl =
-        r.numbers(r.need(ab, "wavelength_nm", "absorption.wavelength_nm"), "absorption.wavelength_nm");
-    for (size_t i = 1; i < wl.size(); ++i)
-      if (!(wl[i] > wl[i - 1])) r.fail("absorption.wavelength_nm", ab["wavelength_nm"], "must increase");
-    const json& tr = r.need(ab, "transmittance", "absorption.transmittance");
-    if (sym == "uniaxial")
-      r.only_keys(tr, "absorption.transmittance.", {"o", "e"});
-    else if (sym == "biaxial")
-      r.only_keys(tr, "absorption.transmittance.", {"alpha", "beta", "gamma"});
-    else
-      r.only_keys(tr, "absorption.transmittance.", {"n"});
-    AbsorptionTable t[3];
-    for (int k = 0; k < 3; ++k) {
-      const std::string key = "absorption.transmittance." + axis_keys[k];
-      const auto T = r.numbers(r.need(tr, axis_keys[k], key), key);
-      if (T.size() != wl.size()) r.fail(key, tr[axis_keys[k]], "needs one value per wavelength");
-      t[k].wavelength_nm = wl;
-      for (double v : T) {
-        if (!(v > 0.0 && v <= 1.0)) r.fail(key, tr[axis_keys[k]], "transmittance must be in (0, 1]");
-        t[k].mu_per_um.push_back(-std::log(v) / d_um);  // Beer–Lambert: T = e^(−μd)
-      }
-    }
+    const auto t = read_absorption(r, j["absorption"], sym, axis_keys);
     c.set_absorption(t[0], t[1], t[2]);
   }
 

@@ -39,6 +39,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/units.h"
+#include "core/optics/beer_lambert.h"
 
 namespace pmsim {
 
@@ -407,7 +408,7 @@ Solved solve(const PreparedPlate& P, const glm::dvec3& k_air) {
     // Mode transmission: a wave polarized along the mode's (p, s) direction, through mode i only.
     const double a = out.tin[i][0] * f.dp[i] + out.tin[i][1] * f.ds[i];
     const double t = std::sqrt(out.tout[0][i] * out.tout[0][i] + out.tout[1][i] * out.tout[1][i]) *
-                     std::abs(a) * std::exp(-kappa);
+                     std::abs(a) * amplitude_attenuation(kappa);  // 0 when opaque (beer_lambert.h)
     (i == 0 ? m.t1 : m.t2) = t;
     (i == 0 ? m.e1 : m.e2) = f.dp[i] * out.p_air + f.ds[i] * s_hat;
   }
@@ -449,8 +450,9 @@ JonesMatrix plate_jones(const PreparedPlate& plate, const glm::dvec3& k_air) {
   if (h2 == 0.0) {
     // Linear modes: diag(e^{−κ1}·e^{−iδ/2}, e^{−κ2}·e^{+iδ/2}).
     const double c = std::cos(0.5 * delta), sn = std::sin(0.5 * delta);
-    const double g1 = s.kappa[0] != 0.0 ? std::exp(-s.kappa[0]) : 1.0;
-    const double g2 = s.kappa[1] != 0.0 ? std::exp(-s.kappa[1]) : 1.0;
+    // An opaque mode (magnetite, ilmenite) passes exactly nothing: no subnormal floats downstream.
+    const double g1 = s.kappa[0] != 0.0 ? amplitude_attenuation(s.kappa[0]) : 1.0;
+    const double g2 = s.kappa[1] != 0.0 ? amplitude_attenuation(s.kappa[1]) : 1.0;
     n11 = complexd(g1 * c, -g1 * sn);
     n22 = complexd(g2 * c, g2 * sn);
     n12 = n21 = 0.0;

@@ -128,12 +128,12 @@ std::string opaque_reason(const MineralSignature& s, const Observations& o) {
     if (o.opaque && *o.opaque) return "";
     return o.opaque ? "transparent in 30 µm" : "-";
   }
-  if (!(o.opaque && *o.opaque)) return "";
+  if (o.opaque && !*o.opaque) return "";
   const bool transmitted = o.relief || o.relief_sign || o.n_range || o.coloured || o.pleochroic || o.max_order ||
                            o.character || o.optic_sign || o.two_v_deg || o.extinction_type ||
                            o.extinction_angle_deg || o.elongation;
   if (transmitted) return "";
-  return "opaque: black in plane and crossed light (under 1e-4 of the light through 30 µm)";
+  return o.opaque ? "opaque: black in plane and crossed light (under 1e-4 of the light through 30 µm)" : "-";
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 namespace pmsim {
 
 struct Observations {
+  std::optional<bool> opaque;               // black in plane and crossed light (magnetite, ilmenite)
   std::optional<ReliefClass> relief;        // relief class against n = 1.54
   std::optional<std::string> relief_sign;   // "positive" | "negative" (Becke line into / out of the grain)
   std::optional<std::array<double, 2>> n_range;  // an index measured in liquids, [lo, hi]
@@ -32,7 +33,10 @@ struct Candidate {
   std::vector<std::string> why;  // one line per observation it agrees with
 };
 
-// The minerals consistent with every observation given, in library order. Slack, each stated:
+// The minerals consistent with every observation given, in library order. An opaque mineral is
+// consistent only with no transmitted-light observation (relief, colour, order, character, sign,
+// 2V, extinction, elongation: none of them can be seen in a black grain) and opaque = yes or not
+// given; a transparent one only without opaque = yes. Slack, each stated:
 // an interference order may be misjudged by one near an order's end (±60 nm of retardation); 2V
 // read ±5° beyond the range given; an extinction angle up to 3° beyond the largest the mineral
 // shows in the sections that show its feature.

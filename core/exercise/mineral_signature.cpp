@@ -11,6 +11,7 @@
 
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
+#include "core/crystal/opacity.h"
 #include "core/crystal/section_optics.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
@@ -176,7 +177,8 @@ MineralSignature mineral_signature(const std::string& mineral) {
       break;
     }
   }
-  colour_facts(c, s);
+  s.opaque = is_opaque(c, kThicknessUm);
+  if (!s.opaque) colour_facts(c, s);  // an opaque grain has no colour to see: it is black
   if (const MineralCrystallography* m = find_mineral_crystallography(mineral)) {
     s.cleavages = m->cleavage.size();
     for (const TwinLaw& t : m->twins)

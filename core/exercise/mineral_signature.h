@@ -44,6 +44,10 @@ struct MineralSignature {
   std::set<std::string> extinction_types;  // "parallel", "inclined", "symmetric"
   std::set<std::string> elongation_signs;  // "length-slow", "length-fast"
   std::string feature;                     // what the extinction is measured to, in words
+  // Opaque in 30 µm (core/crystal/opacity.h: magnetite, ilmenite): black in plane and crossed
+  // light, so a student sees none of relief, colour, interference colour, character or
+  // extinction; the fields above still hold the file's values (a reference), not observations.
+  bool opaque = false;
 };
 
 MineralSignature mineral_signature(const std::string& mineral);

@@ -19,7 +19,8 @@ json grain_report_json(const GrainReport& r) {
             {"extinction_angle_deg", r.extinction_angle_deg ? json(*r.extinction_angle_deg) : json(nullptr)},
             {"sign_of_elongation",
              r.sign_of_elongation ? json(sign_of_elongation_name(*r.sign_of_elongation)) : json(nullptr)},
-            {"retardation_nm", r.retardation_nm}};
+            {"retardation_nm", r.retardation_nm},
+            {"opaque", r.opaque}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
   // The compensator test by brightness (render/brightness_test.h): the luminance at 45° alone,
   // with the accessory adding and subtracting, and which way it reads.

@@ -9,6 +9,7 @@
 #include "core/base/input_error.h"
 #include "core/base/units.h"
 #include "core/crystal/euler_angles.h"
+#include "core/crystal/opacity.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/grain_labels.h"
 
@@ -79,6 +80,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   GrainReport r;
   r.id = label;
   r.mineral = g.mineral;
+  r.opaque = g.crystal && is_opaque(*g.crystal, scene.sample.thickness_um);
   const SectionOptics optics = optics_of(g, g.orientation, kGrainReportIndexWavelengthNm);
   r.extinction_stage_deg = extinction_stages(optics, scene.polarizer_deg);
   if (!optics.circular) r.slow_vibration_deg = image_angle_deg(optics.slow, scene.stage_deg);
@@ -126,6 +128,16 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   }
   const std::optional<glm::dvec3> feature = first_cleavage ? first_cleavage : elongation;
   if (feature && !optics.circular) r.extinction_angle_deg = extinction_from(optics, *feature).angle_deg;
+  if (r.opaque) {
+    // Black in every light: no extinction, interference colour or slow direction to observe.
+    r.extinction_stage_deg.clear();
+    r.slow_vibration_deg.reset();
+    r.retardation_nm = 0.0;
+    r.extinction_angle_deg.reset();
+    r.sign_of_elongation.reset();
+    if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}};
+    return r;
+  }
   if (g.twinned)
     r.twin = GrainTwinReport{
         g.twin_law, extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm),

@@ -8,6 +8,7 @@
 
 #include "core/base/units.h"
 #include "core/crystal/section_optics.h"
+#include "core/optics/beer_lambert.h"
 #include "core/optics/fresnel.h"
 #include "core/optics/interaction.h"
 
@@ -231,9 +232,16 @@ JonesPath trace_specimen_jones(const SpecimenScene& scene, const JonesPathReques
           const glm::dvec3 mu = c->principal_absorption_per_um(lambda);
           const glm::dmat3 R = scene.orientation_of(b.medium);
           const double ex = glm::dot(b.mode, R[0]), ey = glm::dot(b.mode, R[1]), ez = glm::dot(b.mode, R[2]);
-          const double att = std::exp(-0.5 * (mu.x * ex * ex + mu.y * ey * ey + mu.z * ez * ez) * seg);
+          // 0 past the opaque cut-off (beer_lambert.h): ilmenite's e^-69 would be a subnormal float.
+          const double att =
+              amplitude_attenuation(0.5 * (mu.x * ex * ex + mu.y * ey * ey + mu.z * ez * ez) * seg);
           for (int s = 0; s < starts; ++s) b.E[s] = cd(att) * b.E[s];
         }
+      } else if (const double mu = scene.isotropic_absorption_per_um(b.medium, lambda); mu > 0.0) {
+        // An absorbing isotropic mineral (magnetite) is no crystal to the tracer, but absorbs all
+        // the same: Beer–Lambert along the segment, 0 past the opaque cut-off.
+        const double att = amplitude_attenuation(0.5 * mu * seg);
+        for (int s = 0; s < starts; ++s) b.E[s] = cd(att) * b.E[s];
       }
       ++b.events;
       ++out.interfaces;

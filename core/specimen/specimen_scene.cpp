@@ -152,6 +152,12 @@ const Crystal* SpecimenScene::crystal_of(int medium) const {
   return c && c->symmetry() != CrystalSymmetry::Isotropic ? c : nullptr;
 }
 
+double SpecimenScene::isotropic_absorption_per_um(int medium, double wavelength_nm) const {
+  const Crystal* c = media_.at(std::size_t(medium)).crystal.get();
+  if (!c || c->symmetry() != CrystalSymmetry::Isotropic || !c->absorbing()) return 0.0;
+  return c->principal_absorption_per_um(wavelength_nm).x;
+}
+
 glm::dmat3 SpecimenScene::orientation_of(int medium) const {
   const SpecimenMedium& m = media_.at(std::size_t(medium));
   return m.crystal ? m.crystal_to_lab : glm::dmat3(1.0);

@@ -98,6 +98,10 @@ class SpecimenScene {
   // Z in the specimen frame; identity for isotropic media).
   const Crystal* crystal_of(int medium) const;
   glm::dmat3 orientation_of(int medium) const;
+  // Intensity absorption μ (per µm, I = I0·e^(−μ·path)) of medium `id` if it is an absorbing
+  // isotropic mineral (magnetite): the tracer follows such a grain as an isotropic medium, so
+  // its absorption is not a mode's; 0 for every other medium.
+  double isotropic_absorption_per_um(int medium, double wavelength_nm) const;
   int medium_count() const { return int(media_.size()); }
   // Nearest interface along o + t·d (d unit), t > tnear.
   bool intersect(const glm::dvec3& o, const glm::dvec3& d, double tnear, SpecimenHit& hit) const;
