@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/base/build_cache.h"
 #include "core/crystal/plate.h"
 #include "core/lens/lens.h"
 #include "core/lens/lens_tracer.h"
@@ -414,12 +415,8 @@ const std::vector<LensGhostPath>& LensGhostTable::at(double sin_theta) const {
 }
 
 const LensGhostTable& lens_ghost_table(int depth, FresnelModel fresnel) {
-  static std::mutex mu;
-  static std::map<std::pair<int, FresnelModel>, std::unique_ptr<LensGhostTable>> cache;
-  std::lock_guard<std::mutex> lock(mu);
-  auto& slot = cache[{depth, fresnel}];
-  if (!slot) slot = std::make_unique<LensGhostTable>(trace_ghosts(depth, fresnel));
-  return *slot;
+  static BuildCache<std::pair<int, FresnelModel>, LensGhostTable> cache;
+  return *cache.get({depth, fresnel}, [&] { return std::make_shared<const LensGhostTable>(trace_ghosts(depth, fresnel)); });
 }
 
 LensGhostImage lens_ghost_image(const EvaluationPlan& plan, const std::atomic<bool>* cancel) {

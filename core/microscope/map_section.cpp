@@ -7,6 +7,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "core/base/build_cache.h"
 #include "core/base/input_error.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/ebsd/ebsd_frames.h"
@@ -59,7 +60,7 @@ std::string cache_key(const std::string& path, const std::map<std::string, std::
   return k;
 }
 
-std::mutex& cache_mutex() {
+std::mutex& facts_mutex() {
   static std::mutex mu;
   return mu;
 }
@@ -220,24 +221,19 @@ std::shared_ptr<const SectionMap> load_map_section(const std::string& path_given
   const std::string path = section_path(path_given);
   if (path.empty()) throw InputError("", "sample.section", path_given, "no such EBSD map file");
   const std::string key = cache_key(path, phases, nonindexed);
-  static std::map<std::string, std::shared_ptr<const SectionMap>> cache;
-  {
-    std::lock_guard<std::mutex> lock(cache_mutex());
-    if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  }
-  // Read and build outside the lock (seconds for a large map); a second thread building the same
-  // map meanwhile yields an equal section, and the first stored wins.
-  const OrientationMap m = read_orientation_map(path);
-  MapSectionFacts facts;
-  auto s = std::make_shared<const SectionMap>(section_from_orientation_map(m, phases, nonindexed, path, &facts));
-  std::lock_guard<std::mutex> lock(cache_mutex());
-  const auto [it, inserted] = cache.emplace(key, s);
-  if (inserted) facts_table()[it->second.get()] = std::move(facts);
-  return it->second;
+  static BuildCache<std::string, SectionMap> cache;
+  return cache.get(key, [&] {
+    const OrientationMap m = read_orientation_map(path);
+    MapSectionFacts facts;
+    auto s = std::make_shared<const SectionMap>(section_from_orientation_map(m, phases, nonindexed, path, &facts));
+    std::lock_guard<std::mutex> lock(facts_mutex());
+    facts_table()[s.get()] = std::move(facts);
+    return s;
+  });
 }
 
 const MapSectionFacts* map_section_facts(const SectionMap& section) {
-  std::lock_guard<std::mutex> lock(cache_mutex());
+  std::lock_guard<std::mutex> lock(facts_mutex());
   const auto it = facts_table().find(&section);
   return it == facts_table().end() ? nullptr : &it->second;
 }

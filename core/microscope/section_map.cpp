@@ -13,6 +13,7 @@
 #include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/base/build_cache.h"
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/base/units.h"
@@ -591,17 +592,12 @@ std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, 
   const std::string path = section_path(name_or_path);
   if (path.empty())
     throw InputError("", "sample.section", name_or_path, "no such thin-section file in assets/sections");
-  static std::mutex mu;
-  static std::map<std::pair<std::string, std::optional<int>>, std::shared_ptr<const SectionMap>> cache;
-  std::lock_guard<std::mutex> lock(mu);
-  const auto key = std::pair{path, orientation_seed};
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  nlohmann::json j = read_json_file(path, "thin-section file");
-  if (orientation_seed) reorient_section_grains(j, std::uint64_t(*orientation_seed));
-  auto m = std::make_shared<const SectionMap>(section_from_json(j, path));
-  cache[key] = m;
-  return m;
+  static BuildCache<std::pair<std::string, std::optional<int>>, SectionMap> cache;
+  return cache.get(std::pair{path, orientation_seed}, [&] {
+    nlohmann::json j = read_json_file(path, "thin-section file");
+    if (orientation_seed) reorient_section_grains(j, std::uint64_t(*orientation_seed));
+    return std::make_shared<const SectionMap>(section_from_json(j, path));
+  });
 }
 
 }  // namespace pmsim

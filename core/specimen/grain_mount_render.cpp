@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <string>
 
+#include "core/base/build_cache.h"
 #include "core/base/units.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/microscope/view_geometry.h"
 #include "core/specimen/forward_plane_light.h"
-#include "core/specimen/last_built.h"
 
 namespace pmsim {
 
@@ -72,7 +72,7 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
 }
 
 std::shared_ptr<const SpecimenScene> grain_mount_specimen_cached(const Scene& scene) {
-  static LastBuilt<SpecimenScene> cache;
+  static BuildCache<std::string, SpecimenScene, Keep::Last> cache;
   if (scene.sample.crystal) return grain_mount_specimen(scene);
   const std::string key = scene.sample.mineral + "|" +
                           std::to_string(scene.sample.medium_index.value_or(kDefaultGrainMountIndex));

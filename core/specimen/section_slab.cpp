@@ -12,10 +12,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/base/build_cache.h"
 #include "core/base/units.h"
 #include "core/microscope/map_section.h"
 #include "core/microscope/view_geometry.h"
-#include "core/specimen/last_built.h"
 #include "core/specimen/specimen_random.h"
 #include "core/spectrum/reference_wavelengths.h"
 
@@ -442,7 +442,7 @@ std::shared_ptr<const SpecimenScene> section_slab(const Scene& scene) {
       << o.spacing_um << '|' << o.thickness_um << '|' << scene.sample.medium << '|'
       << scene.sample.medium_index.value_or(0.0) << '|' << scene.sample.orientation_seed.value_or(-1);
   // One slab kept: the app looks at one field at a time; a stage move rebuilds.
-  static LastBuilt<SpecimenScene> cache;
+  static BuildCache<std::string, SpecimenScene, Keep::Last> cache;
   return cache.get(key.str(), [&] { return build_section_slab(load_scene_section(scene), medium, o); });
 }
 
