@@ -33,6 +33,26 @@ TEST(PixelProbe, PlateAt45ShowsItsRetardationAndSinSquaredSpectrum) {
   }
 }
 
+// An opaque plate (ilmenite, k = 0.1: 30 µm passes nothing, crystal_opaque_test) has no
+// interference colour to read: the probe says opaque, gives no retardation, and the transmitted
+// spectrum is 0 at every wavelength; a quartz plate of the same cut is not opaque.
+TEST(PixelProbe, OpaquePlateShowsNoLightAndNoRetardation) {
+  Scene s;
+  s.sample.mineral = "ilmenite";
+  s.sample.optic_axis = {std::sqrt(0.5), std::sqrt(0.5), 0.0};
+  s.sample.thickness_um = 30.0;
+  const PixelProbe p = probe_pixel(s, 0.5, 0.5);
+  ASSERT_TRUE(p.lit);
+  EXPECT_TRUE(p.opaque);
+  EXPECT_EQ(p.retardation_nm, 0.0);
+  EXPECT_EQ(p.order, 0.0);
+  for (double t : p.transmission) EXPECT_EQ(t, 0.0);
+  s.sample.mineral = "quartz";
+  const PixelProbe q = probe_pixel(s, 0.5, 0.5);
+  EXPECT_FALSE(q.opaque);
+  EXPECT_NEAR(q.retardation_nm, 30.0 * 1000.0 * 0.0091, 10.0);  // δ ≈ 0.009 at 550 nm
+}
+
 TEST(PixelProbe, WedgeRetardationGrowsLeftToRightAndSectionsNameTheirMinerals) {
   Scene w;
   w.sample.type = SampleType::Wedge;

@@ -318,8 +318,12 @@ void App::draw_teaching() {
   } else {
     ImGui::Text("Mineral       %s", p.mineral.c_str());
     ImGui::Text("Thickness     %.1f um", p.thickness_um);
-    ImGui::Text("Retardation   %.0f nm", p.retardation_nm);
-    ImGui::Text("Order         %.2f (order %d)", p.order, static_cast<int>(p.order) + 1);
+    if (p.opaque) {
+      ImGui::TextUnformatted("Opaque        no light passes: no interference colour to read");
+    } else {
+      ImGui::Text("Retardation   %.0f nm", p.retardation_nm);
+      ImGui::Text("Order         %.2f (order %d)", p.order, static_cast<int>(p.order) + 1);
+    }
     if (t.grain) draw_grain_text(*t.grain);
     if (t.section_becke) {
       ImGui::Text("Focus         %+.1f um", scene_.focus_um);

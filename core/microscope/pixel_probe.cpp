@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/conventions.h"
+#include "core/crystal/opacity.h"
 #include "core/materials/medium.h"
 #include "core/microscope/evaluation_plan.h"
 #include "core/microscope/optical_train.h"
@@ -56,7 +57,8 @@ PixelProbe probe_pixel(const Scene& scene_in, double x_frac, double y_frac) {
     p.wavelength_nm.push_back(nm);
     p.transmission.push_back(std::isfinite(t) ? t : 0.0);
   }
-  if (D.crystal && p.thickness_um > 0) {
+  p.opaque = D.crystal && p.thickness_um > 0 && is_opaque(*D.crystal, p.thickness_um);
+  if (D.crystal && p.thickness_um > 0 && !p.opaque) {
     PreparedPlate pp = plan->prepare(std::max(0, dom), kOrderWavelengthNm);
     pp.thickness_um = p.thickness_um;
     p.retardation_nm = plate_modes(pp, k).retardation_nm;
