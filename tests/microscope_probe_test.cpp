@@ -35,7 +35,8 @@ TEST(PixelProbe, PlateAt45ShowsItsRetardationAndSinSquaredSpectrum) {
 
 // An opaque plate (ilmenite, k = 0.1: 30 µm passes nothing, crystal_opaque_test) has no
 // interference colour to read: the probe says opaque, gives no retardation, and the transmitted
-// spectrum is 0 at every wavelength; a quartz plate of the same cut is not opaque.
+// spectrum is 0 at every wavelength; the figure description says opaque; a quartz plate of the
+// same cut is not opaque.
 TEST(PixelProbe, OpaquePlateShowsNoLightAndNoRetardation) {
   Scene s;
   s.sample.mineral = "ilmenite";
@@ -47,6 +48,14 @@ TEST(PixelProbe, OpaquePlateShowsNoLightAndNoRetardation) {
   EXPECT_EQ(p.retardation_nm, 0.0);
   EXPECT_EQ(p.order, 0.0);
   for (double t : p.transmission) EXPECT_EQ(t, 0.0);
+  // Nor a figure: the conoscope shows black, not ilmenite's uniaxial negative cross.
+  Scene cono = s;
+  cono.mode = ViewMode::Cono;
+  cono.bertrand_in = true;
+  const FigureInfo f = describe_figure(cono);
+  EXPECT_EQ(f.kind, "opaque");
+  EXPECT_TRUE(f.optic_sign.empty());
+  EXPECT_NE(f.summary.find("no interference figure"), std::string::npos) << f.summary;
   s.sample.mineral = "quartz";
   const PixelProbe q = probe_pixel(s, 0.5, 0.5);
   EXPECT_FALSE(q.opaque);

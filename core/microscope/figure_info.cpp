@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/units.h"
+#include "core/crystal/opacity.h"
 #include "core/microscope/evaluation_plan.h"
 #include "core/spectrum/reference_wavelengths.h"
 
@@ -36,6 +37,13 @@ FigureInfo describe_figure(const Scene& scene_in) {
   if (!D.crystal) {
     f.kind = "empty stage";
     f.summary = "empty stage: no figure";
+    return f;
+  }
+  if (is_opaque(*D.crystal, D.thickness_um)) {
+    // Magnetite, ilmenite: no light reaches the Bertrand lens, whatever the crystal's symmetry.
+    f.kind = "opaque";
+    f.orientation = "no interference figure (opaque: no light passes)";
+    f.summary = f.mineral + ": opaque, " + f.orientation;
     return f;
   }
   const glm::dmat3& R = D.crystal_to_lab;  // columns X, Y, Z in the lab (stage applied)

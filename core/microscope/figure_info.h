@@ -10,7 +10,7 @@ namespace pmsim {
 
 struct FigureInfo {
   std::string mineral;
-  std::string kind;            // "uniaxial", "biaxial", "isotropic", "empty stage"
+  std::string kind;            // "uniaxial", "biaxial", "isotropic", "opaque", "empty stage"
   std::string optic_sign;      // "positive", "negative", "" (isotropic)
   double two_v_deg = 0.0;      // biaxial: 2V about the acute bisectrix; uniaxial 0
   double axis_tilt_deg = 0.0;  // optic axis (uniaxial) / acute bisectrix (biaxial) from the microscope axis
