@@ -22,6 +22,7 @@
 #include "core/microscope/sample_source.h"
 #include "core/microscope/view_geometry.h"
 #include "core/spectrum/cie.h"
+#include "core/spectrum/spectral_bands.h"
 
 namespace pmsim {
 
@@ -129,19 +130,10 @@ GhostBands ghost_bands(const Scene& scene) {
     bands.xyz_weight = {glm::dvec3(1.0)};
     return bands;
   }
-  bands.width_nm = (kVisibleMaxNm - kVisibleMinNm) / kBands;
-  glm::dvec3 sum(0.0);
-  for (int b = 0; b < kBands; ++b) {
-    const double lo_nm = kVisibleMinNm + b * bands.width_nm;
-    glm::dvec3 w(0.0);
-    for (int s = 0; s < 50; ++s)
-      w += observer_weight(scene.illuminant, lo_nm + (s + 0.5) * bands.width_nm / 50);
-    bands.centre_nm.push_back(lo_nm + 0.5 * bands.width_nm);
-    bands.xyz_weight.push_back(w);
-    sum += w;
-  }
-  const glm::dvec3 scale = illuminant_white_xyz(scene.illuminant) / sum;
-  for (glm::dvec3& w : bands.xyz_weight) w *= scale;
+  const SpectralBands b = spectral_bands(kBands, scene.illuminant);
+  bands.width_nm = b.width_nm[0];
+  for (int k = 0; k < kBands; ++k) bands.centre_nm.push_back(b.centre_nm(k));
+  bands.xyz_weight = b.weight;
   return bands;
 }
 

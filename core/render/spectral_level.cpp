@@ -9,6 +9,7 @@
 #include "core/render/band_integral.h"
 #include "core/render/fast_trig.h"
 #include "core/spectrum/cie.h"
+#include "core/spectrum/spectral_bands.h"
 
 namespace pmsim {
 
@@ -23,31 +24,11 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
     L.moment = {glm::dvec3(0.0)};
   } else {
     L.n = std::max(1, n);
-    L.band_nm = (kVisibleMaxNm - kVisibleMinNm) / L.n;
-    for (int i = 0; i < L.n; ++i) {
-      const double lo = kVisibleMinNm + i * L.band_nm;
-      L.nm.push_back(lo + 0.5 * L.band_nm);
-      // Midpoint sub-rule at ≤ 1 nm: the observer tables are 1–5 nm data, linear in between.
-      const int sub = std::max(1, static_cast<int>(std::ceil(L.band_nm)));
-      glm::dvec3 w(0.0), m(0.0);
-      for (int s = 0; s < sub; ++s) {
-        const double t = (s + 0.5) * L.band_nm / sub;
-        const glm::dvec3 ws = observer_weight(plan.scene().illuminant, lo + t) * (L.band_nm / sub);
-        w += ws;
-        m += ws * (t - 0.5 * L.band_nm);
-      }
-      L.weight.push_back(w);
-      L.moment.push_back(m);
-    }
-    // Normalise so that T ≡ 1 gives the illuminant white exactly at every n (the sub-rule above
-    // differs from the tables' own quadrature by ~1e-6).
-    glm::dvec3 sum(0.0);
-    for (const glm::dvec3& w : L.weight) sum += w;
-    const glm::dvec3 scale = illuminant_white_xyz(plan.scene().illuminant) / sum;
-    for (int i = 0; i < L.n; ++i) {
-      L.weight[i] *= scale;
-      L.moment[i] *= scale;
-    }
+    const SpectralBands bands = spectral_bands(L.n, plan.scene().illuminant);
+    L.band_nm = bands.width_nm[0];
+    for (int i = 0; i < L.n; ++i) L.nm.push_back(bands.centre_nm(i));
+    L.weight = bands.weight;
+    L.moment = bands.moment;
   }
   for (double nm : L.nm) {
     L.train.push_back(make_train(plan.scene(), plan.compensator(), nm));

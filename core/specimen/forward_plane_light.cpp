@@ -21,7 +21,7 @@
 #include "core/specimen/forward_source.h"
 #include "core/specimen/jones_path.h"
 #include "core/specimen/plane_light_passes.h"
-#include "core/specimen/spectral_bands.h"
+#include "core/spectrum/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
 
 namespace pmsim {

@@ -15,7 +15,7 @@
 #include "core/specimen/forward_source.h"
 #include "core/specimen/jones_path.h"
 #include "core/specimen/specimen_random.h"
-#include "core/specimen/spectral_bands.h"
+#include "core/spectrum/spectral_bands.h"
 
 namespace pmsim {
 

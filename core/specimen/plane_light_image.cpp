@@ -17,7 +17,7 @@
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 #include "core/specimen/plane_light_passes.h"
-#include "core/specimen/spectral_bands.h"
+#include "core/spectrum/spectral_bands.h"
 #include "core/specimen/specimen_random.h"
 #include "core/spectrum/reference_wavelengths.h"
 

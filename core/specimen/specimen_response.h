@@ -33,7 +33,7 @@
 #include "core/microscope/scene.h"
 #include "core/optics/mueller.h"
 #include "core/render/render_image.h"
-#include "core/specimen/spectral_bands.h"
+#include "core/spectrum/spectral_bands.h"
 
 namespace pmsim {
 
