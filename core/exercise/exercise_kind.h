@@ -11,6 +11,14 @@
 
 namespace pmsim {
 
+// Up to this an extinction is called parallel: micas and other "parallel" minerals extinguish
+// within 0-3° of their cleavage (Nesse 2012 ch. 14), and a student's setting of the darkest
+// position scatters by 1-2°; the default tolerance of an extinction angle is the same. One rule
+// for the key's truths and the identification's signatures.
+inline constexpr double kParallelExtinctionDeg = 3.0;
+// Whether an extinction angle, folded into [0°, 45°], counts as parallel.
+inline bool is_parallel_extinction(double folded_angle_deg) { return folded_angle_deg <= kParallelExtinctionDeg; }
+
 enum class TaskKind {
   Identify,              // the mineral (library names and aliases)
   ExtinctionAngle,       // deg, to the cleavage trace or elongation, folded into [0°, 45°]

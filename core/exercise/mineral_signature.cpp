@@ -9,22 +9,23 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/base/build_cache.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/crystal/opacity.h"
 #include "core/crystal/section_optics.h"
+#include "core/exercise/exercise_kind.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
+#include "core/spectrum/reference_wavelengths.h"
 
 namespace pmsim {
 
 namespace {
 
-constexpr double kIndexNm = 589.3;
+constexpr double kIndexNm = kMineralTableDNm;
 constexpr double kThicknessUm = 30.0;
 constexpr double kVisibleDeltaE = 5.0;
-// Extinction within this of the feature is "parallel" (the exercise's rule, student_exercise.cpp).
-constexpr double kParallelDeg = 3.0;
 // Cleavages whose planes lie within 30° of the section's normal show as traces (section_map.h).
 constexpr double kTraceSin = 0.5;
 
@@ -59,7 +60,7 @@ glm::dvec3 any_perpendicular(const glm::dvec3& d) {
   return glm::normalize(glm::cross(d, t));
 }
 
-// Whether a vibration direction bisects two of the traces (angle > 10°) within kParallelDeg.
+// Whether a vibration direction bisects two of the traces (angle > 10°) within kParallelExtinctionDeg.
 bool symmetric_to_traces(const SectionOptics& so, const std::vector<glm::dvec3>& traces) {
   for (std::size_t i = 0; i < traces.size(); ++i)
     for (std::size_t j = i + 1; j < traces.size(); ++j) {
@@ -68,7 +69,7 @@ bool symmetric_to_traces(const SectionOptics& so, const std::vector<glm::dvec3>&
       if (glm::dot(traces[i], b) < 0) b = -b;
       const glm::dvec3 bis1 = glm::normalize(traces[i] + b), bis2 = glm::normalize(glm::cross(so.normal, bis1));
       for (const glm::dvec3& bis : {bis1, bis2})
-        if (extinction_from(so, bis).angle_deg < kParallelDeg) return true;
+        if (is_parallel_extinction(extinction_from(so, bis).angle_deg)) return true;
     }
   return false;
 }
@@ -102,7 +103,7 @@ void extinction_facts(const Crystal& c, const MineralCrystallography& m, Mineral
     const glm::dvec3 feature = feature_is_zone ? *zone : plane_trace(n, *zone);
     const double a = extinction_from(so, feature).angle_deg;
     lo = std::min(lo, a), hi = std::max(hi, a);
-    s.extinction_types.insert(a <= kParallelDeg ? "parallel" : "inclined");
+    s.extinction_types.insert(is_parallel_extinction(a) ? "parallel" : "inclined");
     if (m.habit.elongation || m.habit.tabular) {
       const SignOfElongation e = sign_of_elongation(so, feature);
       if (e != SignOfElongation::Indeterminate)
@@ -148,7 +149,7 @@ ReliefClass relief_class(double n) {
 
 int max_interference_order(double birefringence, double thickness_um) {
   const double gamma_nm = 1000.0 * thickness_um * birefringence;
-  return gamma_nm <= 0.0 ? 0 : std::max(1, int(std::ceil(gamma_nm / 550.0)));
+  return gamma_nm <= 0.0 ? 0 : std::max(1, int(std::ceil(gamma_nm / kOrderWavelengthNm)));
 }
 
 MineralSignature mineral_signature(const std::string& mineral) {
@@ -189,15 +190,8 @@ MineralSignature mineral_signature(const std::string& mineral) {
 }
 
 const MineralSignature& cached_mineral_signature(const std::string& mineral) {
-  static std::mutex mu;
-  static std::map<std::string, std::unique_ptr<const MineralSignature>> cache;
-  {
-    std::lock_guard<std::mutex> lock(mu);
-    if (const auto it = cache.find(mineral); it != cache.end()) return *it->second;
-  }
-  auto s = std::make_unique<const MineralSignature>(mineral_signature(mineral));
-  std::lock_guard<std::mutex> lock(mu);
-  return *cache.emplace(mineral, std::move(s)).first->second;  // a racing thread's equal copy may win
+  static BuildCache<std::string, MineralSignature> cache;
+  return *cache.get(mineral, [&] { return std::make_shared<const MineralSignature>(mineral_signature(mineral)); });
 }
 
 const std::vector<MineralSignature>& library_signatures() {

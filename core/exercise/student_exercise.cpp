@@ -10,6 +10,7 @@
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_series.h"
 #include "core/exercise/colour_words.h"
+#include "core/exercise/exercise_kind.h"
 #include "core/exercise/mineral_signature.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/figure_info.h"
@@ -26,10 +27,6 @@ namespace pmsim {
 namespace {
 
 constexpr double kIndexNm = kGrainReportIndexWavelengthNm;  // n_D, the tables' wavelength
-// Up to this an extinction is called parallel: micas and other "parallel" minerals extinguish
-// within 0-3° of their cleavage (Nesse 2012 ch. 14), and a student's setting of the darkest
-// position scatters by 1-2°; the default tolerance of an extinction angle is the same.
-constexpr double kParallelDeg = 3.0;
 
 std::string fixed(double v, int digits) {
   char b[48];
@@ -149,9 +146,9 @@ std::optional<TaskTruth> extinction_truth(TaskKind kind, const GrainReport& r) {
     if (d <= -90.0) d += 180.0;
     // Either vibration direction on either bisector: folding modulo 90° covers all four.
     if (std::abs(d) > 10.0)
-      symmetric = folded_extinction_angle_deg(line_distance_deg(*r.slow_vibration_deg, a + 0.5 * d)) < kParallelDeg;
+      symmetric = is_parallel_extinction(folded_extinction_angle_deg(line_distance_deg(*r.slow_vibration_deg, a + 0.5 * d)));
   }
-  const std::string type = symmetric ? "symmetric" : angle < kParallelDeg ? "parallel" : "inclined";
+  const std::string type = symmetric ? "symmetric" : is_parallel_extinction(angle) ? "parallel" : "inclined";
   t.answer = type;
   t.explanation = seen + (symmetric ? ", and the vibration directions bisect the two cleavage traces"
                                     : ", the extinction angle is " + fixed(angle, 1) + "°") +
