@@ -58,6 +58,9 @@ PlaneLightOptions plane_light_options(const Scene& scene) {
   o.analyzer_rad = radians(scene.analyzer_deg);
   o.illuminant = scene.illuminant;
   o.single_wavelength_nm = scene.render.single_wavelength_nm;
+  // render.wavelengths, as every renderer reads it (0: the renderer's own choice); with the
+  // analyzer in never fewer than kCrossedPolarBands (interference colours need 12.5 nm bands).
+  if (scene.render.wavelengths > 0) o.bands = std::min(scene.render.wavelengths, kMaxTracedBands);
   // Like every image: stop at render.tolerance (split-half estimate), or at render.spp if set.
   // Unset, 256 traces a pixel bound plane light (a render stops long before at the default
   // tolerance: the 256² garnet mount after 2 passes), so that a CLI render ends.

@@ -81,6 +81,10 @@ constexpr double kStoppedDownApertureNa = 0.03;
 // Bands with the analyzer in (see above): 12.5 nm, a tenth of the period of sin²(πΓ/λ) at the
 // upper end of the second order.
 constexpr int kCrossedPolarBands = 32;
+// The most bands a traced specimen takes from render.wavelengths: 128 bands of 3.1 nm hold the
+// colour of retardations up to ~40 orders at a tenth of a fringe; the response's colour store,
+// 48 bytes a band and chroma node, is then 0.2 GB for a 512² Disc (a 736² grid, nodes every 4).
+constexpr int kMaxTracedBands = 128;
 
 struct PlaneLightOptions {
   int width = 256, height = 256;
