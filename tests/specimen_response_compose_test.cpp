@@ -1,7 +1,9 @@
 // compose_response (core/specimen/specimen_response.h) on synthetic responses, against a direct
 // double-precision reading of its definition: per pixel the reference block contracted with the
 // frame's weights and read by the Keys cubic at the turned position, plus the colour nodes' blocks
-// contracted per band and read bilinearly. The composer's own work (only the points the field
+// contracted per band and read by the luminance-guided upsampling (bilinear weights times the
+// joint bilateral range weights, each node's colour scaled by the luminance ratio; docs/response.md,
+// "What a frame costs"). The composer's own work (only the points the field
 // reads, four pixels at a time, sums reordered, float) may differ from it by float rounding only;
 // and a Disc response at its own stage angle gives the Field response's image bit for bit.
 #include <gtest/gtest.h>
@@ -131,17 +133,47 @@ glm::dvec3 reference_xyz(const SpecimenResponse& r, const pmsim::InstrumentSetti
         }
     }
   if (!mono) {
+    // The colour nodes by joint bilateral upsampling: each node's bilinear weight times the
+    // range weight 1 / (1 + (d/σ)²), d = (g_p − g_n)/(g_p + g_n + ε), of the reference's Y at the
+    // pixel (the cubic sample above) and at the node's own grid point, normalised; each node's
+    // colour difference scaled by (g_p + ε_r)/(g_n + ε_r). A node whose point is off the grid or
+    // images outside the image's pixel rectangle has range weight and scale 1.
+    const auto luminance = [&](int gi, int gj) {
+      const float* b = &r.ref[(std::size_t(gj) * std::size_t(r.nx) + std::size_t(gi)) * 12];
+      double lum = 0.0;
+      for (int b_ = 0; b_ < nb; ++b_) lum += r.bands.weight[std::size_t(b_)][1] * contract(v_band[std::size_t(b_)], b);
+      return std::max(0.0, lum);
+    };
+    const double gp = std::max(0.0, xyz.y), sigma = pmsim::kChromaGuideSigma, eps = pmsim::kChromaGuideEps,
+                 ratio_eps = pmsim::kChromaRatioEps;
     const double P = r.chroma_period;
     const double nxp = std::min(gx / P, r.cnx - 1.0), nyp = std::min(gy / P, r.cny - 1.0);
     const int i0 = std::min(int(nxp), r.cnx - 2), j0 = std::min(int(nyp), r.cny - 2);
+    glm::dvec3 chroma(0.0);
+    double total = 0.0;
     for (int j = j0; j <= j0 + 1; ++j)
       for (int i = i0; i <= i0 + 1; ++i) {
-        const double wt = (1.0 - std::abs(nxp - i)) * (1.0 - std::abs(nyp - j));
+        double wt = (1.0 - std::abs(nxp - i)) * (1.0 - std::abs(nyp - j)), ratio = 1.0;
+        const int gi = i * r.chroma_period, gj = j * r.chroma_period;
+        // The node's point in image pixels (the inverse of the turn above).
+        const double dx = gi - 0.5 * (r.nx - 1), dy = 0.5 * (r.ny - 1) - gj;
+        const double px = std::cos(rel) * dx - std::sin(rel) * dy + 0.5 * (r.image_width - 1);
+        const double py = 0.5 * (r.image_height - 1) - (std::sin(rel) * dx + std::cos(rel) * dy);
+        const double tol = 1e-6;
+        if (gi < r.nx && gj < r.ny && px >= -tol && px <= r.image_width - 1 + tol && py >= -tol &&
+            py <= r.image_height - 1 + tol) {
+          const double gn = luminance(gi, gj), sum = gp + gn + eps, d = (gp - gn) / sigma;
+          wt *= sum * sum / (sum * sum + d * d);
+          ratio = (gp + ratio_eps) / (gn + ratio_eps);
+        }
+        total += wt;
         for (int b = 0; b < nb; ++b) {
           const float* d = &r.delta[((std::size_t(j) * std::size_t(r.cnx) + std::size_t(i)) * std::size_t(nb) + std::size_t(b)) * 12];
-          for (int k = 0; k < 3; ++k) xyz[k] += wt * r.bands.weight[std::size_t(b)][k] * contract(v_band[std::size_t(b)], d);
+          for (int k = 0; k < 3; ++k)
+            chroma[k] += wt * ratio * r.bands.weight[std::size_t(b)][k] * contract(v_band[std::size_t(b)], d);
         }
       }
+    xyz += chroma / total;
   }
   return glm::max(xyz, glm::dvec3(0.0));
 }

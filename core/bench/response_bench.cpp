@@ -134,9 +134,32 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick
     if (c.name == "stage30") fresh_ms = f_ms;
     row(c.name + "-fresh-" + std::to_string(spp) + "spp", fresh, ref, f_ms, process_cpu_ms() - c0, "a fresh render at these settings");
     const double ms = compose_ms(disc, in, runs);
-    row(c.name + "-composed", compose_progress(disc, in), ref, ms, ms,
+    const RenderImage composed = compose_progress(disc, in);
+    row(c.name + "-composed", composed, ref, ms, ms,
         "the Disc response (" + std::to_string(spp) + " traces, " + std::to_string(int(disc_ms)) +
             " ms) composed at these settings; time = applying the settings (median of " + std::to_string(runs) + ")");
+    // Up to 128², at the turned stage: the same three against a reference with the colour traced
+    // from every point (chroma period 1: 33 traces a point a pass; 32 passes, seed 3), which the
+    // references above (colour on the period-4 subgrid, as the product's) cannot say.
+    if (quick || n > 128 || c.name == "polars40") continue;
+    log << "  " << c.name << ": colour reference (chroma period 1, 32 passes, seed 3)… " << std::flush;
+    ResponseRenderOptions o;
+    o.light = plane_light_options(c.scene);
+    o.light.spp = 32 * 33;
+    o.light.tolerance_de2000 = 0.0;
+    o.light.seed = 3;
+    o.light.chroma_period = 1;
+    o.estimate_at = in;
+    const RenderImage colour_ref = compose_progress(render_specimen_response(*slab, o), in);
+    log << colour_ref.time_ms << " ms, estimate " << colour_ref.error_estimate.value_or(-1.0) << "\n";
+    const std::string what = "against the colour reference (chroma period 1, 32 passes of 33 traces; its split-half "
+                             "estimate in renderer_estimate of the -colour-reference row)";
+    row(c.name + "-composed-vs-colour-reference", composed, colour_ref, ms, ms, "the Disc response composed, " + what);
+    row(c.name + "-fresh-" + std::to_string(spp) + "spp-vs-colour-reference", fresh, colour_ref, f_ms, f_ms,
+        "a fresh render, " + what);
+    row(c.name + "-reference-vs-colour-reference", ref, colour_ref, ref.time_ms, ref.time_ms,
+        "the " + std::to_string(ref_spp) + "-trace reference, " + what);
+    rows.back().renderer_estimate = colour_ref.error_estimate.value_or(-1.0);
   }
   // A 19-frame stage sweep (0°…180° by 10°) from the Disc response, against one fresh render.
   double sweep_ms = disc_ms;

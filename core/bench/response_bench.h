@@ -1,8 +1,9 @@
 #pragma once
 // The bench rows of the response/instrument split (issue 21) on the default scene, the granite
 // section between crossed polars: one Disc response (the app's), composed at a turned stage and
-// with the gypsum plate, against fresh renders at those settings and a 4×-work reference at each;
-// what applying the settings costs (the frame's work), and a 19-frame stage sweep against one
+// with the gypsum plate, against fresh renders at those settings and a 4×-work reference at each
+// (up to 128², at the turned stage, also against a reference with the colour traced from every
+// point: chroma period 1); what applying the settings costs (the frame's work), and a 19-frame stage sweep against one
 // render.
 #include <ostream>
 #include <string>

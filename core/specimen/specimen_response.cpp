@@ -138,6 +138,12 @@ struct FieldMap {
     const double fx = (x - 0.5 * (w - 1)) * scale, fy = (0.5 * (h - 1) - y) * scale;
     return {(aligned ? fx : c * fx + s * fy) + cx, cy - (aligned ? fy : -s * fx + c * fy)};
   }
+  // The inverse: the image position (pixels, y down) of grid point (gx, gy), R(Δ).
+  glm::dvec2 pixel_of(double gx, double gy) const {
+    const double dx = gx - cx, dy = cy - gy;
+    const double fx = aligned ? dx : c * dx - s * dy, fy = aligned ? dy : s * dx + c * dy;
+    return {fx / scale + 0.5 * (w - 1), 0.5 * (h - 1) - fy / scale};
+  }
   std::array<glm::dvec2, 4> corners(double over) const {
     return {at(0, 0) / over, at(w - 1, 0) / over, at(w - 1, h - 1) / over, at(0, h - 1) / over};
   }
@@ -341,16 +347,54 @@ void contract_nodes(const SpecimenResponse& r, const FrameWeights& fw, const Spa
   });
 }
 
+// The guide of the colour reconstruction at the nodes `spans` lists, into their fourth lane: the
+// luminance Y of the contracted reference at the node's own grid point (I·P, J·P), ≥ 0; −1 (no
+// guide: range weight and scale 1, guided_chroma4) where that point is off the grid, not
+// contracted, or images outside the image's pixel rectangle. The last rule makes a Field response
+// (whose grid ends at the image) and a Disc response at its own stage angle give one image: the
+// Field has no reference beyond its image to guide its outer nodes with.
+void node_guides(const SpecimenResponse& r, const FieldMap& map, const FrameFields& f, const Spans& grid_spans,
+                 const Spans& spans, std::vector<float>& nodes) {
+  const int P = r.chroma_period;
+  const float y_scale = float(f.grid_scale.y);
+  constexpr double kTol = 1e-6;  // pixels: a node on the image's edge is inside it
+  tbb::parallel_for(tbb::blocked_range<int>(0, r.cny, 4), [&](const tbb::blocked_range<int>& rows) {
+    for (int J = rows.begin(); J < rows.end(); ++J) {
+      const int gj = J * P;
+      for (int I = spans.lo[std::size_t(J)]; I <= spans.hi[std::size_t(J)]; ++I) {
+        const int gi = I * P;
+        float guide = -1.0f;
+        if (gi < r.nx && gj < r.ny && gi >= grid_spans.lo[std::size_t(gj)] && gi <= grid_spans.hi[std::size_t(gj)]) {
+          const glm::dvec2 px = map.pixel_of(gi, gj);
+          if (px.x >= -kTol && px.x <= map.w - 1 + kTol && px.y >= -kTol && px.y <= map.h - 1 + kTol) {
+            const std::size_t g = std::size_t(gj) * std::size_t(r.nx) + std::size_t(gi);
+            guide = std::max(0.0f, f.channels == 1 ? y_scale * f.grid[g] : f.grid[g * 4 + 1]);
+          }
+        }
+        nodes[(std::size_t(J) * std::size_t(r.cnx) + std::size_t(I)) * 4 + 3] = guide;
+      }
+    }
+  });
+}
+
 FrameFields contract_response(const SpecimenResponse& r, const InstrumentSettings& in, const FieldMap& map) {
   const FrameWeights fw = frame_weights(r, in);
   FrameFields f;
   f.channels = fw.channels;
   f.grid_scale = fw.grid_scale;
   f.grid = grid_slot().take(std::size_t(r.nx) * std::size_t(r.ny) * (fw.channels == 1 ? 1 : 4));
-  contract_grid(r, fw, read_spans(map.corners(1.0), r.nx, r.ny, 1, 2), f.grid);  // the cubic's 4 × 4 points
-  if (r.single_wavelength_nm > 0.0 || r.delta.empty()) return f;
+  const bool colour = !(r.single_wavelength_nm > 0.0 || r.delta.empty());
+  // The cubic's 4 × 4 points, and with colour nodes their own grid points (the guide): a sample's
+  // nodes lie within P − 1 points before and P after it.
+  const int P = r.chroma_period;
+  const Spans grid_spans =
+      read_spans(map.corners(1.0), r.nx, r.ny, colour ? std::max(1, P - 1) : 1, colour ? std::max(2, P) : 2);
+  contract_grid(r, fw, grid_spans, f.grid);
+  if (!colour) return f;
   f.nodes = node_slot().take(std::size_t(r.cnx) * std::size_t(r.cny) * 4);
-  contract_nodes(r, fw, read_spans(map.corners(double(r.chroma_period)), r.cnx, r.cny, 0, 1), f.nodes);  // bilinear
+  const Spans spans = read_spans(map.corners(double(P)), r.cnx, r.cny, 0, 1);  // bilinear
+  contract_nodes(r, fw, spans, f.nodes);
+  node_guides(r, map, f, grid_spans, spans, f.nodes);
   return f;
 }
 
@@ -441,18 +485,55 @@ void cubic4(const float* v, int w, int h, const Cell4& c, v4 out[4]) {
   }
 }
 
-// Four bilinear samples of a field of w × h points of 4 floats (X, Y, Z, 0): out[p] is sample p's.
-[[gnu::always_inline]] inline void bilinear4(const float* v, int w, const Cell4& c, v4 out[4]) {
-  const v4 w00 = (1 - c.fx) * (1 - c.fy), w10 = c.fx * (1 - c.fy), w01 = (1 - c.fx) * c.fy, w11 = c.fx * c.fy;
+// The colour nodes' X, Y, Z at four pixels, guided by the reference's full-resolution luminance
+// (`guide`, Y: lane p pixel p's; a node's in its fourth lane, < 0: none, see node_guides):
+// - Joint bilateral upsampling (Kopf, Cohen, Lischinski & Uyttendaele 2007, "Joint bilateral
+//   upsampling", ACM TOG 26(3), eq. 2): each of a pixel's four nodes weighted by its bilinear
+//   weight times a range weight, the similarity of the guide at the pixel and at the node, the
+//   sum normalised by the weights' sum. The range kernel is a Cauchy (Lorentzian) one of the
+//   guide's relative difference, 1 / (1 + (d/σ)²) with d = (g_p − g_n)/(g_p + g_n + ε): 1 where
+//   the two are equal (a flat region, and a pixel on its node, keep the plain bilinear colour),
+//   falling off across a grain boundary or a crack whatever the field's brightness.
+// - Each node's colour difference scaled by (g_p + ε_r)/(g_n + ε_r): the colour follows the
+//   luminance between the nodes, as chroma-from-luma prediction does (Trudeau, Egge & Barr 2018,
+//   "Predicting chroma from luma in AV1", Data Compression Conference): a crack, a Becke line or
+//   a lamella's edge dims every band alike, so the colour's ratio to the luminance varies more
+//   slowly than the colour. The floor ε_r keeps a node dark at the reference wavelength but not in
+//   other bands (first-order red, the gypsum plate's tint) from being scaled up without bound.
+// A node without a guide has range weight and scale 1. Four pixels at once, in the lanes:
+// out[k] is channel k (X, Y, Z) of the four.
+[[gnu::always_inline]] inline void guided_chroma4(const float* v, int w, const Cell4& c, const v4& guide, v4 out[3]) {
+  const v4 bil[4] = {(1 - c.fx) * (1 - c.fy), c.fx * (1 - c.fy), (1 - c.fx) * c.fy, c.fx * c.fy};
+  const float eps = float(kChromaGuideEps), inv_s2 = float(1.0 / (kChromaGuideSigma * kChromaGuideSigma)),
+              eps_r = float(kChromaRatioEps);
+  const v4 zero{}, one = zero + 1.0f, tiny = zero + 1e-30f;
+  v4 node[4][4];  // node[k][p]: pixel p's corner k (X, Y, Z, guide); transposed below
   for (int p = 0; p < 4; ++p) {
     const float* q = v + 4 * (std::size_t(c.y0[p]) * std::size_t(w) + std::size_t(c.x0[p]));
     const std::size_t dx = c.x0[p] + 1 < w ? 4 : 0, dy = 4 * std::size_t(w);
-    out[p] = w00[p] * load4(q) + w10[p] * load4(q + dx) + w01[p] * load4(q + dy) + w11[p] * load4(q + dy + dx);
+    node[0][p] = load4(q);
+    node[1][p] = load4(q + dx);
+    node[2][p] = load4(q + dy);
+    node[3][p] = load4(q + dy + dx);
   }
+  v4 total = zero;
+  out[0] = out[1] = out[2] = zero;
+  for (int k = 0; k < 4; ++k) {
+    transpose(node[k]);  // node[k][ch]: channel ch of corner k (lanes: the four pixels)
+    const v4 gn = node[k][3], sum = guide + gn + eps, d = guide - gn;
+    const v4 wt = bil[k] * (gn < zero ? one : sum * sum / (sum * sum + inv_s2 * d * d));
+    const v4 ws = wt * (gn < zero ? one : (guide + eps_r) / (gn + eps_r));
+    total += wt;
+    for (int ch = 0; ch < 3; ++ch) out[ch] += ws * node[k][ch];
+  }
+  // Every bilinear set has a weight ≥ ¼ and every range weight is > 0 (sum ≥ ε > 0): the guard
+  // only keeps a degenerate cell from dividing by zero.
+  const v4 inv = one / (total > tiny ? total : tiny);
+  for (int ch = 0; ch < 3; ++ch) out[ch] *= inv;
 }
 
 // Rows [y0, y1) of the image, four pixels at a time: each pixel's grid value (cubic, or the point
-// itself when the grid is the pixels) and colour nodes' (bilinear), their XYZ and linear sRGB.
+// itself when the grid is the pixels) and colour nodes' (guided_chroma4), their XYZ and linear sRGB.
 template <int Stride>
 void compose_rows(const SpecimenResponse& r, const FieldMap& map, const FrameFields& f, int y0, int y1,
                   RenderImage& img) {
@@ -498,8 +579,10 @@ void compose_rows(const SpecimenResponse& r, const FieldMap& map, const FrameFie
       }
       v4 n[4] = {};
       if (nodes) {
-        bilinear4(nodes, r.cnx, cells(nx, ny, r.cnx, r.cny, std::max(r.cnx - 2, 0), std::max(r.cny - 2, 0)), n);
-        transpose(n);
+        const v4 zero4{}, lum = Stride == 1 ? scale[1] * g[0] : g[1];
+        const v4 guide = zero4 < lum ? lum : zero4;  // as the nodes' guides: ≥ 0
+        guided_chroma4(nodes, r.cnx, cells(nx, ny, r.cnx, r.cny, std::max(r.cnx - 2, 0), std::max(r.cny - 2, 0)),
+                       guide, n);  // n[k]: channel k (lanes: the four pixels)
       }
       v4 xyz[3], rgb[3];  // lanes: the four pixels
       const v4 zero4{};

@@ -17,10 +17,11 @@
 //
 // Storage (the choice and its measured error: docs/response.md): M at the reference wavelength
 // (555 nm) at every grid point, and each band's difference M_b − M_ref on the chroma subgrid (every
-// `chroma_period`-th point, bilinear between), as the forward renderer resolves colour; without an
-// accessory the bands are summed once into colour-weighted blocks, so a frame reads 12 + 36/P²
-// numbers a pixel. An accessory's retardance spectrum enters through three weighted sums per band
-// (C(δ) = C0 + cos δ·C1 + sin δ·C2), formed once per accessory setting.
+// `chroma_period`-th point, read between by luminance-guided upsampling), as the forward renderer
+// resolves colour; without an accessory the bands are summed once into colour-weighted blocks, so
+// a frame reads 12 + 36/P² numbers a pixel. An accessory's retardance spectrum enters through
+// three weighted sums per band (C(δ) = C0 + cos δ·C1 + sin δ·C2), formed once per accessory
+// setting.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -82,8 +83,17 @@ struct SpecimenResponse {
   std::string model_report;
 };
 
+// The colour nodes' reconstruction between them (compose_response: joint bilateral upsampling
+// guided by the reference's luminance Y, each node's colour scaled by the luminance's ratio;
+// docs/response.md, "Where its error comes from" and "Measured"): the range kernel's width σ in
+// the guide's relative difference (g_p − g_n)/(g_p + g_n + ε), its floor ε and the ratio's floor
+// ε_r (XYZ of a white Y = 1), chosen on the bench's granite at 128² (σ 0.05–0.4 and ε_r
+// 0.01–0.02 measured).
+inline constexpr double kChromaGuideSigma = 0.1, kChromaGuideEps = 0.01, kChromaRatioEps = 0.02;
+
 // The image at `instrument`: XYZ and linear sRGB, as a fresh render at those settings would give
-// (within the bilinear resampling of the grid when the stage differs from frame_stage_rad).
+// (within the cubic resampling of the grid, and the colour nodes' other places, when the stage
+// differs from frame_stage_rad).
 // Progress fields (passes, samples_per_pixel, time_ms, model_report) are the response's.
 RenderImage compose_response(const SpecimenResponse& response, const InstrumentSettings& instrument);
 
