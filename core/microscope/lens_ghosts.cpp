@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <optional>
 

@@ -21,6 +21,12 @@ void require(bool ok, const std::string& file, const char* key, const std::strin
 }
 // Numbers in messages as the readers show them (core/base/json_reader.h).
 std::string num(double v) { return number_text(v); }
+// Two decimals, as indices are written (1.40, not 1.4).
+std::string fixed2(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f", v);
+  return b;
+}
 // "[x,y,z]" (appending, not "[" + …: GCC 12 warns falsely on that pattern, PR 105651).
 std::string vec_text(const std::array<double, 3>& v) {
   std::string t = "[";
@@ -106,9 +112,9 @@ void check_scene(const Scene& s, const std::string& file) {
   if (s.sample.medium_index)
     require(std::isfinite(*s.sample.medium_index) && *s.sample.medium_index >= kMinMediumIndex &&
                 *s.sample.medium_index <= kMaxMediumIndex,
-            file, "sample.medium_index", num(*s.sample.medium_index), "n_D must be in [1.40, 1.80]");
+            file, "sample.medium_index", num(*s.sample.medium_index), "n_D must be in [" + fixed2(kMinMediumIndex) + ", " + fixed2(kMaxMediumIndex) + "]");
   require(std::isfinite(s.sample.thickness_um) && s.sample.thickness_um > 0 && s.sample.thickness_um <= kMaxThicknessUm,
-          file, "sample.thickness_um", num(s.sample.thickness_um), "must be in (0, 100000] µm");
+          file, "sample.thickness_um", num(s.sample.thickness_um), std::string("must be in (0, ") + num(kMaxThicknessUm) + "] µm");
   for (auto [v, key] :
        {std::pair{&s.sample.optic_axis, "sample.optic_axis"}, std::pair{&s.sample.x_axis, "sample.x_axis"},
         std::pair{&s.sample.z_axis, "sample.z_axis"}}) {
@@ -170,19 +176,20 @@ void check_scene(const Scene& s, const std::string& file) {
   require(s.render.spp >= 0 && s.render.spp <= kMaxSpp, file, "render.spp", num(s.render.spp),
           "must be ≥ 0 (0: until converged)");
   require(s.render.wavelengths >= 0 && s.render.wavelengths <= kMaxWavelengths, file, "render.wavelengths",
-          num(s.render.wavelengths), "must be in 0…4001 (0: until converged)");
+          num(s.render.wavelengths), std::string("must be in 0…") + num(kMaxWavelengths) + " (0: until converged)");
   require(s.render.single_wavelength_nm == 0 ||
               (s.render.single_wavelength_nm >= kMinSingleWavelengthNm &&
                s.render.single_wavelength_nm <= kMaxSingleWavelengthNm),
           file, "render.single_wavelength_nm", num(s.render.single_wavelength_nm),
-          "must be 0 (white light) or within 380–780 nm");
+          std::string("must be 0 (white light) or within ") + num(kMinSingleWavelengthNm) + "–" +
+              num(kMaxSingleWavelengthNm) + " nm");
   require(std::isfinite(s.render.tolerance_de2000) && s.render.tolerance_de2000 > 0, file, "render.tolerance",
           num(s.render.tolerance_de2000), "must be > 0 (CIEDE2000)");
   require(std::isfinite(s.render.exposure_ev) && s.render.exposure_ev >= kMinExposureEv &&
               s.render.exposure_ev <= kMaxExposureEv,
-          file, "render.exposure_ev", num(s.render.exposure_ev), "must be in −10…10 (stops)");
+          file, "render.exposure_ev", num(s.render.exposure_ev), std::string("must be in −") + num(-kMinExposureEv) + "…" + num(kMaxExposureEv) + " (stops)");
   require(s.optics.lens_depth >= 0 && s.optics.lens_depth <= kMaxLensDepth, file, "optics.lens_depth",
-          num(s.optics.lens_depth), "must be in 0…10");
+          num(s.optics.lens_depth), std::string("must be in 0…") + num(kMaxLensDepth));
 }
 
 }  // namespace pmsim

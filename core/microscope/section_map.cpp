@@ -5,8 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <map>
-#include <mutex>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
