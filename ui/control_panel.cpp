@@ -256,6 +256,8 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     // sample.section tells a map by it); any other map by its path.
     static const std::vector<std::string> sections = [] {
       std::vector<std::string> v = list_asset_stems("sections", ".json");
+      for (const std::string& r : list_asset_stems("rocks", ".json"))
+        if (std::find(v.begin(), v.end(), r) == v.end()) v.push_back(r);  // grown rocks (core/texture)
       for (const char* ext : {".ctf", ".ang"})
         for (const std::string& m : list_asset_stems("ebsd", ext)) v.push_back(m + ext);
       return v;

@@ -233,6 +233,14 @@ const std::vector<Key>& keys() {
            s.sample.orientation_seed = as_int(v);
        },
        [](const Scene& s) -> json { return s.sample.orientation_seed ? json(*s.sample.orientation_seed) : json(nullptr); }},
+      {"sample.seed",
+       [](Scene& s, const json& v) {
+         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+           s.sample.seed.reset();
+         else
+           s.sample.seed = as_int(v);
+       },
+       [](const Scene& s) -> json { return s.sample.seed ? json(*s.sample.seed) : json(nullptr); }},
       {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
        [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
       {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },

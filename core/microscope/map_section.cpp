@@ -249,7 +249,7 @@ std::string map_section_summary(const MapSectionFacts& f) {
 std::shared_ptr<const SectionMap> load_scene_section(const Scene& scene) {
   if (is_orientation_map_path(scene.sample.section))
     return load_map_section(scene.sample.section, scene.sample.phases, scene.sample.nonindexed);
-  return load_section(scene.sample.section, scene.sample.orientation_seed);
+  return load_section(scene.sample.section, scene.sample.orientation_seed, scene.sample.seed);
 }
 
 }  // namespace pmsim

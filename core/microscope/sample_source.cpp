@@ -1,4 +1,5 @@
 #include "core/microscope/sample_source.h"
+#include "core/texture/rock_recipe.h"
 
 #include <filesystem>
 
@@ -50,7 +51,7 @@ std::string section_path(const std::string& name) {
   return "";
 }
 
-bool section_known(const std::string& name) { return !section_path(name).empty(); }
+bool section_known(const std::string& name) { return !section_path(name).empty() || !rock_recipe_path(name).empty(); }
 
 const Crystal& scene_crystal(const Scene& scene, Crystal& storage) {
   if (scene.sample.crystal) {

@@ -98,6 +98,11 @@ struct SampleSettings {
   // from this seed (0 … 2³¹ − 1; core/microscope/section_reorient.h), a new specimen of the same
   // rock. Unset: the file's orientations.
   std::optional<int> orientation_seed;
+  // sample.seed: grows another specimen of a rock named by sample.section from its recipe
+  // (assets/rocks, core/texture/rock_growth.h): every grain differs, the recipe's mode and
+  // textures stay (0 … 2³¹ − 1). Unset: the recipe's shipped seed. Only rocks grown from a recipe
+  // take it; a hand-placed section file cannot be grown again.
+  std::optional<int> seed;
   bool operator==(const SampleSettings&) const = default;
 };
 

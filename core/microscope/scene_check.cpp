@@ -11,6 +11,7 @@
 #include "core/crystal/mineral_crystallography.h"
 #include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/sample_source.h"
+#include "core/texture/rock_recipe.h"
 
 namespace pmsim {
 
@@ -158,7 +159,13 @@ void check_scene(const Scene& s, const std::string& file) {
   if (s.sample.cut) check_cut(s, file);
   if (s.sample_in && s.sample.type == SampleType::Section)
     require(section_known(s.sample.section), file, "sample.section", s.sample.section,
-            "no such thin-section file in assets/sections");
+            "no such thin-section file in assets/sections or rock in assets/rocks");
+  if (s.sample.seed) {
+    require(*s.sample.seed >= 0, file, "sample.seed", num(*s.sample.seed), "must be in [0, 2147483647]");
+    require(rock_recipe_path(s.sample.section) != "", file, "sample.seed", num(*s.sample.seed),
+            "grows rocks from their recipe (assets/rocks); '" + s.sample.section +
+                "' is not one (sample.orientation_seed gives a section file new orientations)");
+  }
   if (s.sample.orientation_seed) {
     require(*s.sample.orientation_seed >= 0, file, "sample.orientation_seed", num(*s.sample.orientation_seed),
             "must be in [0, 2147483647]");

@@ -5,7 +5,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -20,6 +22,8 @@
 #include "core/crystal/mineral_crystallography.h"
 #include "core/crystal/section_optics.h"
 #include "core/microscope/sample_source.h"
+#include "core/texture/rock_growth.h"
+#include "core/texture/rock_recipe.h"
 
 namespace pmsim {
 
@@ -85,6 +89,9 @@ const std::string& SectionMap::mineral_of_domain(int d) const {
 
 void SectionMap::finish() {
   domain_grain_.assign(2, -1);
+  grown_.reset();
+  grown_grain_.clear();
+  matrix_grain_ = -1;
   for (std::size_t i = 0; i < grains.size(); ++i) {
     SectionGrain& g = grains[i];
     g.first_domain = static_cast<int>(domain_grain_.size());
@@ -95,6 +102,17 @@ void SectionMap::finish() {
     if (has_opaque_domain) domain_grain_.push_back(-1);
     cell_start_.clear();
     cell_grains_.clear();
+    return;
+  }
+  std::vector<GrainGrowth> crystals;
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    if (grains[i].matrix) matrix_grain_ = static_cast<int>(i);
+    if (!grains[i].growth) continue;
+    crystals.push_back(*grains[i].growth);
+    grown_grain_.push_back(static_cast<int>(i));
+  }
+  if (!crystals.empty()) {
+    grown_ = std::make_shared<const GrownTiling>(std::move(crystals), matrix_grain_ >= 0, width_mm, height_mm);
     return;
   }
   // Grid over the extent with about two cells per grain, at most 1024 a side.
@@ -174,6 +192,10 @@ void SectionMap::finish() {
 int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
   int best = 0;
   double best_d = 1e300;
+  if (grown_) {
+    const int c = grown_->owner_exhaustive(p);
+    return c < 0 ? matrix_grain_ : grown_grain_[c];
+  }
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const double dist = grain_distance2(grains[i], p);
     if (dist < best_d) {
@@ -185,6 +207,10 @@ int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
 }
 
 int SectionMap::nearest_grain(const glm::dvec2& p) const {
+  if (grown_) {
+    const int c = grown_->owner(p);
+    return c < 0 ? matrix_grain_ : grown_grain_[c];
+  }
   if (cell_start_.empty()) return nearest_grain_exhaustive(p);
   const int cx = std::clamp(static_cast<int>(std::floor((p.x + 0.5 * width_mm) / cell_mm_)), 0, cells_x_ - 1);
   const int cy = std::clamp(static_cast<int>(std::floor((p.y + 0.5 * height_mm) / cell_mm_)), 0, cells_y_ - 1);
@@ -238,7 +264,14 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   const SectionGrain& g = grains[gi];
   const glm::dvec2 d = p - g.centre_mm;
   int zone = static_cast<int>(g.zones.size()) - 1;
-  if (zone > 0) {
+  if (zone > 0 && g.growth) {
+    const double s = growth_fraction(*g.growth, p);
+    for (int z = 0; z < zone; ++z)
+      if (s <= g.zones[z].outer_fraction) {
+        zone = z;
+        break;
+      }
+  } else if (zone > 0) {
     const double r2 = ellipse_q(g, p);
     for (int z = 0; z < zone; ++z)
       if (r2 <= g.zones[z].outer_fraction * g.zones[z].outer_fraction) {
@@ -326,13 +359,6 @@ double lamella_max_inclination_deg(double lamella_mm, double thickness_um) {
 // through the thickness over t·tan θ: 52 µm at 60°, small against mm-sized grains).
 constexpr double kSimpleTwinMaxInclinationDeg = 60.0;
 
-// Default true aspect ratios (length / width) of a habit when the file gives none: prisms of
-// pyroxene and amphibole about 3 : 1, plates (micas) about 5 : 1 diameter / thickness (Deer, Howie
-// & Zussman 2013, habit descriptions).
-constexpr double kPrismAspect = 3.0;
-constexpr double kPlateAspect = 5.0;
-
-
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -418,9 +444,19 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
   const double size = gr.require<double>("size_mm", Range::above(0));
   // The crystal's shape: an ellipsoid whose longest axis is size_mm, along the habit.
   glm::dmat3 Q = outer({1, 0, 0}, 0.5 * size) + outer({0, 1, 0}, 0.5 * size) + outer({0, 0, 1}, 0.5 * size);
-  if (has_lattice && (mc->habit.elongation || mc->habit.tabular)) {
+  const bool habit = has_lattice && (mc->habit.elongation || mc->habit.tabular);
+  const double aspect = habit ? gr.get_or("aspect", default_habit_aspect(mc), Range::at_least(1)) : 1.0;
+  if (const auto gw = gr.optional_object("growth")) {
+    GrainGrowth growth;
+    growth.nucleus_mm = {g.centre_mm.x, g.centre_mm.y, gw->get_or("nucleus_z_mm", 0.0)};
+    growth.from = gw->require<double>("from");
+    growth.to = gw->require<double>("to");
+    if (!(growth.to > growth.from)) gw->fail("to", "growth must end after it starts (to > from)");
+    growth.shape = habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
+    g.growth = growth;
+  }
+  if (habit) {
     const bool both = mc->habit.elongation && mc->habit.tabular;
-    const double aspect = gr.get_or("aspect", mc->habit.tabular ? kPlateAspect : kPrismAspect, Range::at_least(1));
     if (both) {  // a lath: length along [uvw], thickness ⟂ (hkl), width between (√aspect)
       const glm::dvec3 e = L * lattice_direction(mc->cell, *mc->habit.elongation);
       const glm::dvec3 n0 = L * plane_normal(mc->cell, *mc->habit.tabular);
@@ -528,6 +564,32 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     }
 }
 
+// The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
+// reports, is the section's extent).
+void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones or twins of its own");
+  g.matrix = true;
+  g.centre_mm = {0.0, 0.0};
+  set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
+  g.twin_orientation = g.orientation;
+}
+
+// Grown and ellipse grains do not share a tiling (their distances are not comparable), and one
+// matrix at most fills what the crystals leave.
+void check_grown(const JsonReader& r, const SectionMap& m) {
+  int grown = 0, matrices = 0;
+  for (const SectionGrain& g : m.grains) {
+    grown += g.growth ? 1 : 0;
+    matrices += g.matrix ? 1 : 0;
+  }
+  const int others = static_cast<int>(m.grains.size()) - grown - matrices;
+  if (grown > 0 && others > 0)
+    r.fail("grains", "grains with \"growth\" and grains without it cannot share a section");
+  if (matrices > 1) r.fail("grains", "a section has at most one matrix grain");
+  if (matrices > 0 && grown == 0) r.fail("grains", "a matrix grain needs grown crystals (\"growth\") around it");
+}
+
 SectionMap parse_section(const json& j, const std::string& path) {
   if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
   const JsonReader r(j, path);
@@ -565,11 +627,14 @@ SectionMap parse_section(const json& j, const std::string& path) {
     }
     if (gr.has("seed"))
       read_legacy_grain(gr, g);
+    else if (gr.get_or("matrix", false))
+      read_matrix_grain(gr, g, m);
     else
       read_grain(gr, g, m.thickness_um);
     if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
     m.grains.push_back(std::move(g));
   }
+  check_grown(r, m);
   m.finish();
   return m;
 }
@@ -586,7 +651,19 @@ SectionMap section_from_json(const nlohmann::json& j, const std::string& origin)
   }
 }
 
-std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, std::optional<int> orientation_seed) {
+std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, std::optional<int> orientation_seed,
+                                               std::optional<int> seed) {
+  if (const std::string rock = rock_recipe_path(name_or_path); !rock.empty()) {
+    static BuildCache<std::tuple<std::string, std::optional<int>, std::optional<int>>, SectionMap> rocks;
+    return rocks.get(std::tuple{rock, orientation_seed, seed}, [&] {
+      const RockRecipe recipe = read_rock_recipe(rock);
+      const std::uint64_t s = seed ? static_cast<std::uint64_t>(*seed) : recipe.seed;
+      nlohmann::json j = rock_section_json(recipe, grow_rock(recipe, s), s);
+      if (orientation_seed) reorient_section_grains(j, std::uint64_t(*orientation_seed));
+      return std::make_shared<const SectionMap>(section_from_json(j, rock));
+    });
+  }
+  if (seed) throw InputError("", "sample.seed", std::to_string(*seed), "'" + name_or_path + "' is not a rock with a recipe in assets/rocks");
   const std::string path = section_path(name_or_path);
   if (path.empty())
     throw InputError("", "sample.section", name_or_path, "no such thin-section file in assets/sections");

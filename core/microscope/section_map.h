@@ -22,6 +22,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/crystal/crystal.h"
+#include "core/texture/grown_tiling.h"
 
 namespace pmsim {
 
@@ -80,6 +81,15 @@ struct SectionGrain {
   double twin_trace_rad = 0.0;       // direction of the composition-plane trace
   double lamella_mm = 0.0;           // lamella width; 0: a simple twin (one composition plane)
   glm::dvec2 twin_normal{0.0, 1.0};  // unit normal of the trace in the section
+
+  // Grown grains (core/texture/grown_tiling.h; "growth" in a section file; all or none of a
+  // section's grains but its matrix): the tiling is by arrival time and the
+  // zones are growth zones, zone outer_fraction the fraction of the growth time (from → to), so
+  // zone boundaries run parallel to the crystal faces. The ellipse above is then the central
+  // section of the habit ellipsoid, kept for the grain report's elongation.
+  std::optional<GrainGrowth> growth;
+  // The matrix (glass of a volcanic rock's groundmass): every point no grown crystal reaches.
+  bool matrix = false;
 
   std::vector<SectionZone> zones;  // inner to outer, at least one
   std::vector<CleavageCracks> cracks;
@@ -149,6 +159,11 @@ class SectionMap {
 
  private:
   int nearest_grain(const glm::dvec2& p_mm) const;
+  // Grown sections: the tiling of their crystals, each crystal's grain, and the matrix grain (−1
+  // without one).
+  std::shared_ptr<const GrownTiling> grown_;
+  std::vector<int> grown_grain_;
+  int matrix_grain_ = -1;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
   int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;
 
@@ -165,7 +180,10 @@ SectionMap section_from_json(const nlohmann::json& j, const std::string& origin)
 
 // Loads (once, cached by resolved path and seed) a section file; with an orientation seed its
 // grains are given new orientations first (sample.orientation_seed, section_reorient.h).
+// A rock name with a recipe (assets/rocks, or a recipe file's path) is grown by the texture
+// engine from `seed` (its recipe's seed when unset; core/texture/rock_growth.h), once per seed.
 std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path,
-                                               std::optional<int> orientation_seed = std::nullopt);
+                                               std::optional<int> orientation_seed = std::nullopt,
+                                               std::optional<int> seed = std::nullopt);
 
 }  // namespace pmsim

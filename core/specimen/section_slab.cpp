@@ -440,7 +440,7 @@ std::shared_ptr<const SpecimenScene> section_slab(const Scene& scene) {
   key.precision(17);
   key << scene.sample.section << '|' << o.centre_mm.x << ',' << o.centre_mm.y << '|' << o.half_width_mm << '|'
       << o.spacing_um << '|' << o.thickness_um << '|' << scene.sample.medium << '|'
-      << scene.sample.medium_index.value_or(0.0) << '|' << scene.sample.orientation_seed.value_or(-1);
+      << scene.sample.medium_index.value_or(0.0) << '|' << scene.sample.orientation_seed.value_or(-1) << '|' << scene.sample.seed.value_or(-1);
   // One slab kept: the app looks at one field at a time; a stage move rebuilds.
   static BuildCache<std::string, SpecimenScene, Keep::Last> cache;
   return cache.get(key.str(), [&] { return build_section_slab(load_scene_section(scene), medium, o); });

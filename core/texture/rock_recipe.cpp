@@ -1,0 +1,114 @@
+#include "core/texture/rock_recipe.h"
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base/asset_locator.h"
+#include "core/base/input_error.h"
+#include "core/base/json_reader.h"
+#include "core/crystal/crystal.h"
+
+namespace pmsim {
+
+namespace {
+
+void known_mineral(const JsonReader& r, const char* key, const std::string& name) {
+  try {
+    (void)find_mineral(name);
+  } catch (const InputError& e) {
+    r.fail(key, e.what());
+  }
+}
+
+PhaseRecipe read_phase(const JsonReader& pr) {
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "source"});
+  PhaseRecipe p;
+  p.mineral = pr.require<std::string>("mineral");
+  known_mineral(pr, "mineral", p.mineral);
+  p.name = pr.get_or<std::string>("name", p.mineral);
+  p.mode_percent = pr.require<double>("mode_percent", Range::open_closed(0, 100));
+  const JsonReader c = pr.object("csd");
+  p.csd.slope_per_mm = c.require<double>("slope_per_mm", Range::open(-1e6, 0));
+  p.csd.min_mm = c.require<double>("min_mm", Range::above(0));
+  p.csd.max_mm = c.require<double>("max_mm", Range::above(0));
+  if (!(p.csd.max_mm > p.csd.min_mm)) c.fail("max_mm", "the size range is empty (max_mm must exceed min_mm)");
+  p.nucleation = pr.get_or("nucleation", 0.0, Range::closed(0, 0.99));
+  p.aspect = pr.optional<double>("aspect", Range::at_least(1));
+  if (const auto z = pr.optional_object("zoning")) {
+    ZoningRecipe zr;
+    const std::string kind = z->require<std::string>("kind");
+    if (kind != "oscillatory" && kind != "normal") z->fail("kind", "expected \"oscillatory\" or \"normal\"");
+    if (p.mineral.find(':') == std::string::npos)
+      pr.fail("zoning", "zoning needs a mineral with a composition (\"plagioclase:An55\")");
+    zr.oscillatory = kind == "oscillatory";
+    zr.core = z->require<double>("core", Range::closed(0, 100));
+    zr.rim = z->require<double>("rim", Range::closed(0, 100));
+    zr.amplitude = z->get_or("amplitude", 0.0, Range::closed(0, 50));
+    zr.bands = z->get_or("bands", 4, Range::closed(1, 64));
+    p.zoning = zr;
+  }
+  if (const auto t = pr.optional_object("twin")) {
+    TwinRecipe tr;
+    tr.law = t->require<std::string>("law");
+    tr.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
+    tr.fraction = t->get_or("fraction", 1.0, Range::closed(0, 1));
+    p.twin = tr;
+  }
+  return p;
+}
+
+}  // namespace
+
+RockRecipe read_rock_recipe(const std::string& path) {
+  const nlohmann::json j = read_json_file(path, "rock recipe");
+  if (!j.is_object()) throw InputError(path, "", "", "a rock recipe must hold a JSON object");
+  const JsonReader r(j, path);
+  RockRecipe rr;
+  rr.path = path;
+  rr.name = r.get_or<std::string>("name", std::filesystem::path(path).stem().string());
+  rr.source = r.require<std::string>("source");
+  rr.texture = r.get_or<std::string>("texture", "");
+  rr.seed = static_cast<std::uint64_t>(r.get_or("seed", 1, Range::at_least(0)));
+  rr.thickness_um = r.get_or("thickness_um", 30.0, Range::above(0));
+  if (r.has("size_mm")) {
+    const auto& s = j["size_mm"];
+    if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
+        !(s[1].get<double>() > 0) || s[0].get<double>() > 50 || s[1].get<double>() > 50)
+      r.fail("size_mm", "expected [width, height] in mm, each in (0, 50]");
+    rr.width_mm = s[0].get<double>();
+    rr.height_mm = s[1].get<double>();
+  }
+  if (const auto m = r.optional_object("matrix")) {
+    rr.matrix_mineral = m->require<std::string>("mineral");
+    known_mineral(*m, "mineral", rr.matrix_mineral);
+  }
+  double total = 0.0;
+  for (const JsonReader& pr : r.objects("phases", 1)) {
+    rr.phases.push_back(read_phase(pr));
+    total += rr.phases.back().mode_percent;
+  }
+  if (total > 100.0 + 1e-9) r.fail("phases", "the modes sum to " + std::to_string(total) + " %, over 100");
+  if (rr.matrix_mineral.empty() && std::abs(total - 100.0) > 1e-6)
+    r.fail("phases", "without a matrix the modes must sum to 100 % (they sum to " + std::to_string(total) + ")");
+  return rr;
+}
+
+std::string rock_recipe_path(const std::string& name) {
+  namespace fs = std::filesystem;
+  if (name.empty()) return "";
+  std::error_code ec;
+  const fs::path dir = fs::path(asset_dir()) / "rocks";
+  for (const fs::path& p : {dir / name, dir / (name + ".json")})
+    if (fs::is_regular_file(p, ec)) return p.string();
+  if (fs::is_regular_file(name, ec) && fs::path(name).extension() == ".json") {
+    try {
+      const nlohmann::json j = read_json_file(name, "rock recipe");
+      if (j.is_object() && j.value("type", "") == "rock") return name;
+    } catch (const InputError&) {
+    }
+  }
+  return "";
+}
+
+}  // namespace pmsim

@@ -1,0 +1,72 @@
+#pragma once
+// A rock recipe (assets/rocks/*.json, format in docs/rocks.md): what the texture engine grows a
+// thin section from. The modal composition, each phase's crystal-size distribution and habit, the
+// order of crystallisation, zoning and twinning, and the sources of all of them.
+//
+//   {"type": "rock", "name": "andesite", "source": "...", "texture": "porphyritic, ...",
+//    "seed": 1, "size_mm": [8, 6], "thickness_um": 30,
+//    "matrix": {"mineral": "glass", "source": "..."},            (optional: glass fills the rest)
+//    "phases": [{"name": "plagioclase phenocrysts", "mineral": "plagioclase:An55",
+//                "mode_percent": 20,
+//                "csd": {"slope_per_mm": -3.0, "min_mm": 0.3, "max_mm": 2.5, "source": "..."},
+//                "nucleation": 0.0,          (when the phase begins, 0 … 1 of the cooling time)
+//                "aspect": 3,                (optional; the mineral's default otherwise)
+//                "zoning": {"kind": "oscillatory|normal", "core": 60, "rim": 40,
+//                           "amplitude": 6, "bands": 12},          (optional; composition numbers)
+//                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
+//                "source": "..."}, ...]}
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pmsim {
+
+struct CsdRecipe {
+  // Population density n(L) = n0·exp(slope·L) between min_mm and max_mm: the log-linear CSD of
+  // steady-state crystallisation (Marsh 1988, Contrib. Mineral. Petrol. 99, 277–291; Higgins
+  // 2006, Quantitative Textural Measurements in Igneous and Metamorphic Petrology, ch. 5).
+  double slope_per_mm = -5.0;
+  double min_mm = 0.05, max_mm = 1.0;
+};
+
+struct ZoningRecipe {
+  bool oscillatory = false;       // else normal: core → rim in equal steps
+  double core = 0.0, rim = 0.0;   // composition numbers (An content of "plagioclase:An55")
+  double amplitude = 0.0;         // oscillation about the normal trend (oscillatory)
+  int bands = 1;
+};
+
+struct TwinRecipe {
+  std::string law;
+  double lamella_mm = 0.0;  // 0: simple twins
+  double fraction = 1.0;    // of the phase's crystals
+};
+
+struct PhaseRecipe {
+  std::string name, mineral;
+  double mode_percent = 0.0;
+  CsdRecipe csd;
+  double nucleation = 0.0;
+  std::optional<double> aspect;
+  std::optional<ZoningRecipe> zoning;
+  std::optional<TwinRecipe> twin;
+};
+
+struct RockRecipe {
+  std::string path, name, source, texture;
+  std::uint64_t seed = 1;
+  double width_mm = 8.0, height_mm = 6.0, thickness_um = 30.0;
+  std::string matrix_mineral;  // empty: holocrystalline, the crystals fill the rock
+  std::vector<PhaseRecipe> phases;
+};
+
+// Throws InputError naming file, key and value on a malformed recipe, an unknown mineral, modes
+// that do not sum to ≤ 100 (to 100 without a matrix), or a CSD whose range is empty.
+RockRecipe read_rock_recipe(const std::string& path);
+
+// The recipe file for a rock name (assets/rocks/<name>.json) or a path to a file whose "type" is
+// "rock"; "" when it is neither.
+std::string rock_recipe_path(const std::string& name_or_path);
+
+}  // namespace pmsim
