@@ -19,3 +19,13 @@ for section in granite basalt gabbro schist; do
       --out "$root/docs/images/section_${section}_${mag}x.png"
   done
 done
+# Rocks grown from a recipe (assets/rocks): 4x between crossed polars and in plane light, 40x.
+for rock in andesite; do
+  common=(--set sample.section="$rock" --set render.width=480 --set render.height=360 --scale-bar)
+  "$render" "$scene" "${common[@]}" --set objective.magnification=4 --set objective.na=0.10 \
+    --out "$root/docs/images/rock_${rock}_4x.png"
+  "$render" "$scene" "${common[@]}" --set objective.magnification=4 --set objective.na=0.10 --set analyzer=out \
+    --out "$root/docs/images/rock_${rock}_4x_plane.png"
+  "$render" "$scene" "${common[@]}" --set objective.magnification=40 --set objective.na=0.65 \
+    --set stage.x_mm=0.8 --set stage.y_mm=0.3 --out "$root/docs/images/rock_${rock}_40x.png"
+done

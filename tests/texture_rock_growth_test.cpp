@@ -162,6 +162,47 @@ TEST(RockGrowth, CrystalSizesFollowTheRecipesLogLinearCsd) {
   EXPECT_NEAR(slope, c.slope_per_mm, 0.15 * std::abs(c.slope_per_mm));
 }
 
+// Plagioclase microlites are laths in section: median 2-D aspect ≥ 3 (issue 22's test for a
+// volcanic groundmass; the old ellipse basalt measured 1.85). Aspect from each grain's second
+// moments on a 1 µm raster, √(λ₁/λ₂): exactly length / width for a rectangle. Grains under 20
+// raster points (sections of a lath's tip) are left out; their moments are pixel noise.
+TEST(RockGrowth, PlagioclaseMicrolitesAreLaths) {
+  const RockRecipe r = small_andesite(3.0);
+  const RockGrowth g = grow_rock(r, 1);
+  std::vector<GrainGrowth> crystals;
+  std::vector<int> phase;
+  for (const GrownCrystal& c : g.crystals) {
+    const PhaseRecipe& ph = r.phases[c.phase];
+    const MineralCrystallography* mc = find_mineral_crystallography(ph.mineral);
+    const auto& e = c.euler_deg;
+    const glm::dmat3 L = crystal_to_sample_from_bunge({e[0] * kPi / 180, e[1] * kPi / 180, e[2] * kPi / 180});
+    crystals.push_back({c.nucleus_mm, c.from, 1.0, habit_polyhedron(mc, L, c.size_mm, ph.aspect.value_or(default_habit_aspect(mc)))});
+    phase.push_back(c.phase);
+  }
+  const GrownTiling t(crystals, true, r.width_mm, r.height_mm);
+  std::map<int, std::array<double, 6>> moments;
+  const int n = 1000;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const glm::dvec2 p{-0.5 + (i + 0.5) / n, -0.5 + (j + 0.5) / n};
+      const int o = t.owner(p);
+      if (o < 0 || phase[o] != 4) continue;
+      auto& m = moments[o];
+      m[0] += 1, m[1] += p.x, m[2] += p.y, m[3] += p.x * p.x, m[4] += p.x * p.y, m[5] += p.y * p.y;
+    }
+  std::vector<double> aspect;
+  for (const auto& [k, m] : moments) {
+    if (m[0] < 20) continue;
+    const double mx = m[1] / m[0], my = m[2] / m[0];
+    const double sxx = m[3] / m[0] - mx * mx, sxy = m[4] / m[0] - mx * my, syy = m[5] / m[0] - my * my;
+    const double d = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+    aspect.push_back(std::sqrt((0.5 * (sxx + syy) + d) / (0.5 * (sxx + syy) - d)));
+  }
+  ASSERT_GT(aspect.size(), 300u);
+  std::nth_element(aspect.begin(), aspect.begin() + aspect.size() / 2, aspect.end());
+  EXPECT_GE(aspect[aspect.size() / 2], 3.0);
+}
+
 // Another seed grows another specimen: no crystal in the same place, the same modes.
 TEST(RockGrowth, ASecondSeedDiffersInEveryGrainAndKeepsTheModes) {
   const RockRecipe r = small_andesite(3.0);

@@ -150,6 +150,7 @@ class App {
   void draw_status();
   void draw_scale_bar(ImDrawList* draw) const;
   void draw_slide_overview(Scene& edit, bool& changed);
+  void draw_rock_seed(SampleSettings& s, bool& changed);
   void translate_stage(Scene& edit, float from_x, float from_y, float to_x, float to_y) const;
   void draw_chart();
   void draw_teaching();

@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "core/base/splitmix64.h"
 #include "core/crystal/crystal.h"
 #include "core/ebsd/read_orientation_map.h"
 #include "core/microscope/map_section.h"
@@ -13,6 +14,7 @@
 #include "core/microscope/section_map.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/exposure.h"
+#include "core/texture/rock_recipe.h"
 #include "core/specimen/grain_mount_render.h"
 #include "ui/about.h"
 #include "ui/app.h"
@@ -274,6 +276,7 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("a thin-section .json, or an EBSD orientation map .ctf (Oxford) / .ang (EDAX); Enter opens it");
     if (ImGui::Button("Browse...##section")) browse(Browse::Section);
+    draw_rock_seed(s, changed);
     if (is_orientation_map_path(s.section))
       changed |= combo_enum("Non-indexed points", s.nonindexed, {"mounting medium", "black"});
     changed |= slider_double("Thickness", s.thickness_um, 1.0, 100.0, "%.1f um");
@@ -330,6 +333,28 @@ void App::draw_sample_tab(Scene& edit, bool& changed) {
     changed |= vec3_input("X (n alpha)", s.x_axis);
     changed |= vec3_input("Z (n gamma)", s.z_axis);
   }
+}
+
+// A rock with a recipe grows again from another seed (sample.seed, core/texture): "New specimen"
+// is the teacher's fresh slide of the same rock. A section file cannot be regrown, so a seed left
+// from a rock is dropped when another section is chosen.
+void App::draw_rock_seed(SampleSettings& s, bool& changed) {
+  if (rock_recipe_path(s.section).empty()) {
+    if (s.seed) {
+      s.seed.reset();
+      changed = true;
+    }
+    return;
+  }
+  if (ImGui::Button("New specimen")) {
+    // The next seed along a fixed sequence: reproducible, and 0 … 2³¹ − 1 as sample.seed takes.
+    s.seed = static_cast<int>(splitmix64(static_cast<std::uint64_t>(s.seed.value_or(0)) + 1) & 0x7FFFFFFFu);
+    changed = true;
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s", s.seed ? ("seed " + std::to_string(*s.seed)).c_str() : "the recipe's seed");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("sample.seed: the same rock grown again; every grain differs, the modes and textures stay");
 }
 
 void App::draw_slide_overview(Scene& edit, bool& changed) {

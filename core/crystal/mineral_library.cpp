@@ -14,6 +14,7 @@
 //    "rotatory_power": {"source": "...", "A_deg_um2_per_mm": A, "lambda0_um": l0,
 //        "handedness": "right" | "left"},
 //    "optic_angle_2vz_deg": literature 2Vz (biaxial; checked by the tests, not used),
+//    "amorphous": true — a glass, not a crystal: isotropic, with no crystallography keys,
 //    "series": a solid solution's indices against composition (core/crystal/mineral_series.h),
 //    crystallography keys: see core/crystal/mineral_crystallography.h}
 #include <algorithm>
@@ -198,7 +199,7 @@ Crystal load_mineral(const std::string& path, std::optional<MineralCrystallograp
   if (!j.is_object()) r.fail("", j, "expected a JSON object");
   r.only_keys(j, "",
               {"name", "symmetry", "source", "indices", "absorption", "rotatory_power", "optic_angle_2vz_deg",
-               "pleochroism", "note", "description", "crystal_system", "unit_cell", "optical_orientation",
+               "amorphous", "pleochroism", "note", "description", "crystal_system", "unit_cell", "optical_orientation",
                "cleavage", "habit", "twins", "series"});
   const json& name_v = r.need(j, "name", "name");
   if (!name_v.is_string() || name_v.get<std::string>().empty()) r.fail("name", name_v, "expected a name");
@@ -208,6 +209,13 @@ Crystal load_mineral(const std::string& path, std::optional<MineralCrystallograp
   const json& sym_v = r.need(j, "symmetry", "symmetry");
   const std::string sym = sym_v.is_string() ? sym_v.get<std::string>() : std::string();
   const json& idx = r.need(j, "indices", "indices");
+  if (j.contains("amorphous")) {
+    if (!j["amorphous"].is_boolean()) r.fail("amorphous", j["amorphous"], "expected true or false");
+    if (j["amorphous"].get<bool>() && sym != "isotropic")
+      r.fail("amorphous", j["amorphous"], "a glass is isotropic (\"symmetry\": \"isotropic\")");
+    if (j["amorphous"].get<bool>() && (j.contains("crystal_system") || j.contains("unit_cell")))
+      r.fail("amorphous", j["amorphous"], "a glass has no crystal system or unit cell");
+  }
 
   Crystal c;
   std::vector<std::string> axis_keys;

@@ -4,7 +4,7 @@
 // they have their free-growth shape (constant habit, the growth of Marsh 1988's CSD theory). The
 // owner of a point is the crystal of least arrival time: a Johnson–Mehl tessellation with
 // polyhedral growth (Johnson & Mehl 1939, Trans. AIME 135, 416; the crystallisation model of
-// Hersum & Marsh 2006, J. Volcanol. Geotherm. Res. 154, 1–10). Early crystals keep their faces,
+// Hersum & Marsh 2006, J. Volcanol. Geotherm. Res. 154, 34–47). Early crystals keep their faces,
 // later ones fill what is left between them; a late, fast crystal encloses earlier small ones
 // (ophitic and poikilitic texture).
 //

@@ -98,9 +98,12 @@ std::string rock_recipe_path(const std::string& name) {
   namespace fs = std::filesystem;
   if (name.empty()) return "";
   std::error_code ec;
-  const fs::path dir = fs::path(asset_dir()) / "rocks";
-  for (const fs::path& p : {dir / name, dir / (name + ".json")})
-    if (fs::is_regular_file(p, ec)) return p.string();
+  // A bare name looks in assets/rocks (a path joined to it would replace the folder).
+  if (fs::path(name).filename() == fs::path(name)) {
+    const fs::path dir = fs::path(asset_dir()) / "rocks";
+    for (const fs::path& p : {dir / name, dir / (name + ".json")})
+      if (fs::is_regular_file(p, ec)) return p.string();
+  }
   if (fs::is_regular_file(name, ec) && fs::path(name).extension() == ".json") {
     try {
       const nlohmann::json j = read_json_file(name, "rock recipe");
