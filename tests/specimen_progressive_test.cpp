@@ -71,3 +71,25 @@ TEST(SpecimenProgressive, FarFromEveryFragmentThePixelIsTheEmptyFieldExactly) {
   EXPECT_GT(far, 10000);
   EXPECT_GT(near_noisy, 100) << "pixels at the outline are traced";
 }
+
+// Issue 21: `converged` means the estimate is below the tolerance and nothing else. A render
+// that its pass cap ends first (2 passes, a tolerance no noisy estimate meets) is not converged
+// and says it stopped at the cap; a tiny image keeps it cheap.
+TEST(SpecimenProgressive, StoppedAtThePassCapIsNotConverged) {
+  const auto s = make_specimen(OneFragment{});
+  auto o = mono_view(10.0, 4);  // 2 passes of 2 strata (inner cone and annulus)
+  o.width = o.height = 24;
+  o.um_per_px = 5.0;  // 120 µm: the whole 100 µm fragment, its outline traced
+  o.tolerance_de2000 = 1e-9;
+  std::vector<pmsim::RenderImage> seen;
+  const auto img = pmsim::render_plane_light(*s, o, [&](const pmsim::RenderImage& i) { seen.push_back(i); });
+  ASSERT_EQ(img.passes, 2) << "the cap: 2 passes, the first two an estimate is made from";
+  ASSERT_TRUE(img.error_estimate);
+  EXPECT_GE(*img.error_estimate, o.tolerance_de2000);
+  EXPECT_FALSE(img.converged);
+  EXPECT_EQ(img.stopped, "cap");
+  // While it runs, an image has no reason to have stopped.
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0].stopped, "");
+  EXPECT_FALSE(seen[0].converged);
+}

@@ -17,7 +17,7 @@ struct RenderImage {
   // Estimated mean CIEDE2000 against the converged image; none before two spectral levels could
   // be compared (a preview, the first pass of a progressive render).
   std::optional<double> error_estimate;
-  bool converged = false;        // estimate below the scene's tolerance, or spp/wavelengths reached
+  bool converged = false;        // estimate below the scene's tolerance (a cap stop is not: `stopped`)
   // Why the render ended (empty while it runs): "tolerance" (the estimate fell below
   // render.tolerance: converged), "cap" (render.spp / render.wavelengths or a renderer's own cap
   // was reached first: `converged` is then false unless the estimate is below the tolerance too),

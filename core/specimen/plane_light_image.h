@@ -117,7 +117,7 @@ struct PlaneLightOptions {
 // reference wavelength and at one band, or 8 bands with the analyzer in);
 // `progress` sees the image after each pass (and the preview first, passes = 1, if asked for). `counters` (optional) sums every Fresnel event.
 // `cancel` (optional, polled every pixel row): once raised, the pass in flight is abandoned and
-// the last finished pass's image is returned (converged = false), so an interactive client can
+// the last finished pass's image is returned (converged = false, stopped "cancelled"), so an interactive client can
 // leave a scene within a row's time instead of a whole pass's.
 RenderImage render_plane_light(const SpecimenScene& scene, const PlaneLightOptions& options,
                                const std::function<void(const RenderImage&)>& progress = nullptr,

@@ -54,6 +54,7 @@ bool show_preview(const std::vector<double>& coarse, int cw, int ch, int f, cons
                   const std::function<void(const RenderImage&)>& progress, const std::atomic<bool>* cancel) {
   if (cancel_raised(cancel)) {
     img.converged = false;
+    img.stopped = "cancelled";
     return false;
   }
   spread_preview(coarse, cw, ch, f, open_xyz, open_rgb, img);
@@ -101,6 +102,7 @@ void run_progressive_passes(const ProgressivePasses& p, RenderImage& img, const 
     p.trace_pass(pass);
     if (cancel_raised(cancel)) {
       img.converged = false;
+      img.stopped = "cancelled";
       return;
     }
     const int done = pass + 1;
@@ -112,7 +114,13 @@ void run_progressive_passes(const ProgressivePasses& p, RenderImage& img, const 
     img.passes = done + p.preview_passes;
     img.samples_per_pixel = done * p.samples_per_pass;
     const bool good_enough = p.tolerance_de2000 > 0.0 && err && *err < p.tolerance_de2000;
-    img.converged = done == p.passes || good_enough;
+    // Converged means the estimate is below the tolerance, nothing else (RenderImage::converged,
+    // issue 21): a render the pass cap ends is not converged, and `stopped` says it was the cap.
+    img.converged = good_enough;
+    if (good_enough)
+      img.stopped = "tolerance";
+    else if (done == p.passes)
+      img.stopped = "cap";
     img.time_ms = clock.elapsed_ms();
     if (progress) progress(img);
     if (good_enough) break;

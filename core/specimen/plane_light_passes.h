@@ -42,8 +42,8 @@ RenderImage blank_plane_light_image(int w, int h, int bands, std::string model_r
 void spread_preview(const std::vector<double>& coarse, int cw, int ch, int f, const glm::dvec3& open_xyz,
                     const glm::dvec3& open_rgb, RenderImage& img);
 
-// The preview's end: if cancel was raised while it was traced, img stays unconverged and false is
-// returned (the caller returns img); else the coarse image is spread over img (spread_preview),
+// The preview's end: if cancel was raised while it was traced, img stays unconverged, stopped
+// "cancelled", and false is returned (the caller returns img); else the coarse image is spread over img (spread_preview),
 // timed and shown to `progress`.
 bool show_preview(const std::vector<double>& coarse, int cw, int ch, int f, const glm::dvec3& open_xyz,
                   const glm::dvec3& open_rgb, RenderImage& img, const RenderClock& clock,
@@ -61,10 +61,11 @@ double split_half_de2000(std::size_t n, const std::function<glm::dvec3(std::size
                          const glm::dvec3& white);
 
 // The progressive loop: `passes` passes, each traced by trace_pass(pass), then (unless cancel was
-// raised: img is left unconverged) developed into img by develop_image(done) and judged by
-// split_half_estimate(done) (none: the halves are not comparable yet). img counts the preview as
-// a pass; it is converged after the last pass or once an estimate is below the tolerance (> 0),
-// which ends the render early.
+// raised: img is left unconverged, stopped "cancelled") developed into img by develop_image(done)
+// and judged by split_half_estimate(done) (none: the halves are not comparable yet). img counts
+// the preview as a pass. It is converged only once an estimate is below the tolerance (> 0),
+// which ends the render early (stopped "tolerance"); the last pass without that ends it unconverged,
+// stopped "cap" (RenderImage::converged, ::stopped).
 struct ProgressivePasses {
   int passes = 1;
   int preview_passes = 0;        // 1 when the options asked for a preview
