@@ -148,3 +148,50 @@ TEST(GrainReport, CleavageTracesAreTheCracksTheSectionDraws) {
     }
   EXPECT_GT(flat_ones, 0) << "some of these orientations must put a cleavage too flat to draw";
 }
+
+// Issue 22: grains whose indicatrix is a stand-in on the crystal frame (their mineral file has no
+// optical_orientation) are marked so, from the mineral data: plagioclase and microcline are, quartz,
+// augite, olivine (files with the block) and almandine (isotropic: needs none) are not. The
+// teaching panel's line for them says their extinction angles are not the real mineral's.
+TEST(GrainReport, StandInOpticsAreMarkedFromTheMineralData) {
+  nlohmann::json grains = nlohmann::json::array();
+  const std::vector<std::pair<std::string, bool>> cases = {
+      {"plagioclase:An35", true}, {"microcline", true}, {"quartz", false},
+      {"augite", false},          {"olivine:Fo85", false}, {"almandine", false}};
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    grains.push_back({{"mineral", cases[k].first},
+                      {"centre_mm", {-1.5 + 0.6 * double(k), 0.0}},
+                      {"size_mm", 0.4},
+                      {"euler_deg", {10.0, 35.0, 20.0}}});
+  const SectionMap map = section_from_json({{"size_mm", {4.0, 2.0}}, {"grains", grains}}, "stand-in test");
+  Scene s;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const auto& [mineral, stand_in] = cases[k];
+    // The data behind the mark: no optical_orientation for the stand-ins.
+    const MineralCrystallography* mc = find_mineral_crystallography(mineral);
+    ASSERT_TRUE(mc) << mineral;
+    EXPECT_EQ(!mc->orientation && find_mineral(mineral).symmetry() != CrystalSymmetry::Isotropic, stand_in)
+        << mineral;
+    const GrainReport r = report_grain(s, map, int(k) + 1);
+    EXPECT_EQ(r.optics_stand_in, stand_in) << mineral;
+    EXPECT_STREQ(grain_optics_name(r), stand_in ? "stand-in" : "published") << mineral;
+    const std::string w = grain_optics_warning(r);
+    if (stand_in) {
+      EXPECT_NE(w.find("stand-in"), std::string::npos) << w;
+      EXPECT_NE(w.find("extinction angles are not the real mineral's"), std::string::npos) << w;
+    } else {
+      EXPECT_TRUE(w.empty()) << mineral << ": " << w;
+    }
+  }
+  // A uniaxial grain given by its optic axis alone has nothing standing in; a biaxial grain of a
+  // mineral without an orientation given by x_axis/z_axis has nothing the library can check.
+  const SectionMap direct = section_from_json(
+      {{"size_mm", {2.0, 2.0}},
+       {"grains",
+        {{{"mineral", "quartz"}, {"centre_mm", {-0.5, 0.0}}, {"size_mm", 0.4}, {"optic_axis", {1.0, 0.0, 0.0}}},
+         {{"mineral", "plagioclase"}, {"centre_mm", {0.5, 0.0}}, {"size_mm", 0.4},
+          {"x_axis", {1.0, 0.0, 0.0}}, {"z_axis", {0.0, 1.0, 0.0}}}}}},
+      "direct test");
+  EXPECT_FALSE(report_grain(s, direct, 1).optics_stand_in);
+  EXPECT_TRUE(report_grain(s, direct, 2).optics_stand_in);
+}

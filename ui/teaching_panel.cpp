@@ -184,6 +184,13 @@ void App::draw_grain_text(const GrainReport& g) {
     if (g.twin) ImGui::Text("Twinned       %s law", g.twin->law.c_str());
     return;
   }
+  // A stand-in indicatrix (no optical orientation in the mineral file) must not be read as the
+  // mineral's extinction (issue 22): said before the numbers it qualifies.
+  if (const std::string w = grain_optics_warning(g); !w.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 190, 80, 255));
+    ImGui::TextWrapped("%s", w.c_str());
+    ImGui::PopStyleColor();
+  }
   if (g.extinction_angle_deg)
     ImGui::Text("Extinction    %.1f deg to its %s", *g.extinction_angle_deg,
                 g.cleavage_traces_deg.empty() ? "elongation" : "cleavage");

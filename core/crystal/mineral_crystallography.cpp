@@ -137,4 +137,8 @@ std::optional<MineralCrystallography> read_mineral_crystallography(const JsonRea
   return m;
 }
 
+bool optical_orientation_is_stand_in(const MineralCrystallography* m, const Crystal& c) {
+  return c.symmetry() != CrystalSymmetry::Isotropic && !(m && m->orientation);
+}
+
 }  // namespace pmsim

@@ -79,6 +79,14 @@ std::optional<MineralCrystallography> read_mineral_crystallography(const JsonRea
 // process. Throws InputError for an unknown mineral, as find_mineral does.
 const MineralCrystallography* find_mineral_crystallography(std::string_view name);
 
+// Whether a grain of crystal `c` placed by a crystal frame (a section grain's euler_deg, an EBSD
+// orientation) has only a stand-in for its indicatrix there: `c` is anisotropic and its mineral
+// data `m` (nullptr: none) has no optical_orientation, so X, Y, Z are taken along the crystal
+// frame's e1, e2, e3 (section_map.cpp indicatrix_in_section) and its extinction angles are not
+// the mineral's (issue 22; plagioclase and microcline today, decided by their files, not names).
+// An isotropic crystal needs no orientation: false.
+bool optical_orientation_is_stand_in(const MineralCrystallography* m, const Crystal& c);
+
 // load_mineral_file (crystal.h) that also returns the file's crystallography.
 Crystal load_mineral_file(const std::string& path, std::optional<MineralCrystallography>* crystallography);
 

@@ -20,7 +20,10 @@ json grain_report_json(const GrainReport& r) {
             {"sign_of_elongation",
              r.sign_of_elongation ? json(sign_of_elongation_name(*r.sign_of_elongation)) : json(nullptr)},
             {"retardation_nm", r.retardation_nm},
-            {"opaque", r.opaque}};
+            {"opaque", r.opaque},
+            // Whether the indicatrix (and so every extinction value above) is the mineral file's
+            // published optical orientation or a stand-in on the crystal frame (issue 22).
+            {"optics", grain_optics_name(r)}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
   // The compensator test by brightness (render/brightness_test.h): the luminance at 45° alone,
   // with the accessory adding and subtracting, and which way it reads.

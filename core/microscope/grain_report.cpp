@@ -72,6 +72,15 @@ const char* sign_of_elongation_name(SignOfElongation s) {
   return "indeterminate";
 }
 
+const char* grain_optics_name(const GrainReport& r) { return r.optics_stand_in ? "stand-in" : "published"; }
+
+std::string grain_optics_warning(const GrainReport& r) {
+  if (!r.optics_stand_in) return {};
+  return std::string("Optics        stand-in: ") + r.mineral +
+         "'s file has no published optical orientation, so its indicatrix is placed on the crystal "
+         "axes and these extinction angles are not the real mineral's";
+}
+
 GrainReport report_grain(const Scene& scene, const SectionMap& section, int label) {
   if (label < 1 || label > static_cast<int>(section.grains.size()))
     throw std::out_of_range("grain label " + std::to_string(label) + " not in 1…" +
@@ -81,6 +90,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   r.id = label;
   r.mineral = g.mineral;
   r.opaque = g.crystal && is_opaque(*g.crystal, scene.sample.thickness_um);
+  r.optics_stand_in = g.optics_stand_in;
   const SectionOptics optics = optics_of(g, g.orientation, kGrainReportIndexWavelengthNm);
   r.extinction_stage_deg = extinction_stages(optics, scene.polarizer_deg);
   if (!optics.circular) r.slow_vibration_deg = image_angle_deg(optics.slow, scene.stage_deg);

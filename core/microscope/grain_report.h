@@ -58,6 +58,13 @@ struct GrainReport {
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left
   // empty and the retardation 0; the shape (elongation) and the lattice (euler_deg) still are given.
   bool opaque = false;
+  // The indicatrix is a stand-in on the crystal frame (SectionGrain::optics_stand_in: the mineral
+  // file has no optical_orientation, plagioclase and microcline today), so the extinction stage
+  // angles, extinction angle, sign of elongation and slow direction above are those of the
+  // stand-in, not the real mineral's (issue 22). False ("published"): the mineral file has an
+  // optical_orientation, or the grain is isotropic or uniaxial given by its optic axis (nothing
+  // to place but that).
+  bool optics_stand_in = false;
 };
 
 // The report of grain `label` (1 … grains.size(); std::out_of_range otherwise) in `scene` (stage
@@ -69,5 +76,11 @@ std::vector<GrainReport> report_grains(const Scene& scene, const SectionMap& sec
                                        const std::vector<std::uint16_t>& labels);
 
 const char* sign_of_elongation_name(SignOfElongation s);  // "length-slow", "length-fast", "indeterminate"
+
+// --grains' "optics": "stand-in" or "published" (GrainReport::optics_stand_in).
+const char* grain_optics_name(const GrainReport& r);
+// The teaching panel's line for a stand-in grain, saying its extinction angles are not the real
+// mineral's; empty for a published one.
+std::string grain_optics_warning(const GrainReport& r);
 
 }  // namespace pmsim

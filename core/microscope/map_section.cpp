@@ -160,6 +160,7 @@ SectionMap section_from_orientation_map(const OrientationMap& m, const std::map<
     glm::dmat3 lattice;
     frames(largest, g.orientation, lattice);
     if (u.crystallography) g.lattice_to_section = lattice;
+    if (g.crystal) g.optics_stand_in = optical_orientation_is_stand_in(u.crystallography, *g.crystal);
     if (isotropic) {
       g.zones.push_back({g.mineral, g.crystal, g.orientation, g.orientation, 1.0});
     } else {

@@ -615,12 +615,16 @@ SectionMap parse_section(const json& j, const std::string& path) {
         const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
         if (mc) g.lattice_to_section = L;
         g.orientation = indicatrix_in_section(mc, L);
+        g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
       } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
         const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
         g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
+        // The file's X and Z are as arbitrary against the grain's drawn shape as the stand-in
+        // against its lattice when the library has no orientation of the mineral to check them by.
+        g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
       } else {
         const auto a = numbers(gr, "optic_axis", 3);
-        g.orientation = uniaxial_orientation({a[0], a[1], a[2]});
+        g.orientation = uniaxial_orientation({a[0], a[1], a[2]});  // the whole uniaxial orientation: no stand-in
       }
     } catch (const std::invalid_argument& e) {
       throw InputError(path, gr.prefix(), gr.node().dump(), e.what());

@@ -64,6 +64,11 @@ struct SectionGrain {
   // the mineral file (plagioclase, microcline) orientation = lattice_to_section: X, Y, Z along
   // e1, e2, e3, a stand-in that gives such grains no published extinction angles.
   std::optional<glm::dmat3> lattice_to_section;
+  // True when `orientation` is that stand-in: an anisotropic grain placed by a crystal frame
+  // (euler_deg, an EBSD orientation), or a biaxial one by its x_axis/z_axis, whose mineral file
+  // has no optical_orientation (issue 22: --grains' "optics": "stand-in", the teaching panel's
+  // warning). Set from the mineral data where the orientation is built, never from a name list.
+  bool optics_stand_in = false;
 
   glm::dvec2 centre_mm{0.0};
   // The grain's ellipse in the section: x·metric·x = 1 on its outline (mm⁻²; symmetric 2×2 as
