@@ -87,6 +87,10 @@ TEST(RenderCli, AScene3dFileGoesToThe3dRendererWithSetOnItsDotPaths) {
   const nlohmann::json j = nlohmann::json::parse(f);
   for (const char* k : {"time_ms", "samples_per_pixel", "wavelengths", "error_estimate"})
     EXPECT_TRUE(j.contains(k)) << k;
+  // A fixed sample count with no estimate: stopped by the count, not claimed converged.
+  EXPECT_TRUE(j["error_estimate"].is_null());
+  EXPECT_EQ(j["stopped"], "cap");
+  EXPECT_EQ(j["converged"], false);
   // A bad value at a 3-D dot path is an input error of the 3-D parser: exit 2, no file.
   const std::string bad = temp_dir() + "/fig3_bad.png";
   EXPECT_EQ(run(scene + " --set camera.width=-5 --out " + bad), 2);
