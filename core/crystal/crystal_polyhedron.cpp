@@ -52,13 +52,22 @@ double default_habit_aspect(const MineralCrystallography* mc) {
   return mc->habit.tabular ? 5.0 : 3.0;
 }
 
+CrystalPolyhedron sphere_polyhedron(double size_mm) {
+  CrystalPolyhedron p;
+  p.support_mm = {0.5 * size_mm};
+  p.circumradius_mm = 0.5 * size_mm;
+  return p;
+}
+
 double gauge(const CrystalPolyhedron& p, const glm::dvec3& x) {
+  if (p.normals.empty()) return glm::length(x) / p.support_mm[0];
   double g = 0.0;
   for (std::size_t f = 0; f < p.normals.size(); ++f) g = std::max(g, glm::dot(p.normals[f], x) / p.support_mm[f]);
   return g;
 }
 
 double circumradius_mm(const CrystalPolyhedron& p) {
+  if (p.normals.empty()) return p.support_mm[0];
   // Every vertex is the intersection of three face planes inside all the others.
   double r = 0.0;
   const std::size_t n = p.normals.size();

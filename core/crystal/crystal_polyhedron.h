@@ -13,11 +13,17 @@ namespace pmsim {
 
 struct MineralCrystallography;
 
+// With no faces it is a ball of radius support_mm[0]: a grain that has no faces of its own, whose
+// boundaries its neighbours alone set (the cells of a granoblastic foam, sphere_polyhedron).
 struct CrystalPolyhedron {
   std::vector<glm::dvec3> normals;  // unit outward face normals, section frame
   std::vector<double> support_mm;   // distance of each face plane from the nucleus (> 0)
   double circumradius_mm = 0.0;     // the largest distance of a vertex from the nucleus
 };
+
+// The ball of diameter size_mm (gauge |x| / radius). Equal balls growing from simultaneous nuclei
+// meet on the perpendicular bisector planes: the owners are the nuclei's Voronoi cells.
+CrystalPolyhedron sphere_polyhedron(double size_mm);
 
 // Minkowski gauge of the polyhedron: max_f n_f·x / h_f. 1 on the faces, < 1 inside, convex and
 // positively homogeneous (gauge(kx) = k·gauge(x), k ≥ 0), so the crystal scaled by s is gauge ≤ s.

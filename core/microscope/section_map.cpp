@@ -452,7 +452,10 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     growth.from = gw->require<double>("from");
     growth.to = gw->require<double>("to");
     if (!(growth.to > growth.from)) gw->fail("to", "growth must end after it starts (to > from)");
-    growth.shape = habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
+    // "sphere": a granoblastic grain, whose neighbours alone bound it (crystal_polyhedron.h).
+    const std::string shape = gw->get_or<std::string>("shape", "habit");
+    if (shape != "habit" && shape != "sphere") gw->fail("shape", "expected \"habit\" or \"sphere\"");
+    growth.shape = shape == "sphere" ? sphere_polyhedron(size) : habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
     g.growth = growth;
   }
   if (habit) {

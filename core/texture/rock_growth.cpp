@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/base/splitmix64.h"
@@ -12,6 +13,7 @@
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/mineral_crystallography.h"
 #include "core/crystal/uniform_orientation.h"
+#include "core/texture/foam_relaxation.h"
 #include "core/texture/grown_tiling.h"
 
 namespace pmsim {
@@ -36,6 +38,7 @@ struct PhaseModel {
   double volume_per_size3 = 0.0;
   double rate_per_time = 1.0;  // G: size grown per unit time
   double mean_size = 0.0, mean_size3 = 0.0;
+  glm::dvec3 fabric_axis{0.0, 0.0, 1.0};  // crystal frame: the habit axis a fabric aligns
 };
 
 // Volume of the unit polyhedron: the fraction of a 24³ grid over its circumscribed cube inside it.
@@ -75,6 +78,41 @@ double cut_crystal_size(const CsdRecipe& c, Random& rng) {
   }
 }
 
+// Turns a uniformly drawn orientation so that its fabric axis (crystal frame) lies along the
+// fabric direction perturbed by a Gaussian of spread σ (the smallest rotation taking one to the
+// other): the rotation about the axis stays uniform.
+std::array<double, 3> aligned(const std::array<double, 3>& euler_deg, const FabricRecipe& f,
+                              const glm::dvec3& axis_crystal, Random& rng) {
+  const glm::dmat3 L0 = crystal_to_sample_from_bunge({euler_deg[0] * kPi / 180.0, euler_deg[1] * kPi / 180.0,
+                                                      euler_deg[2] * kPi / 180.0});
+  const double s = f.spread_deg * kPi / 180.0;
+  glm::dvec3 g;
+  for (int k = 0; k < 3; ++k) {  // Box–Muller
+    const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
+    g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+  }
+  glm::dvec3 target = glm::normalize(glm::dvec3(f.direction[0], f.direction[1], f.direction[2]) + s * g);
+  const glm::dvec3 a = glm::normalize(L0 * axis_crystal);
+  if (glm::dot(a, target) < 0.0) target = -target;  // an axis, not a vector
+  const glm::dvec3 k = glm::cross(a, target);
+  const double sin_t = glm::length(k), cos_t = glm::dot(a, target);
+  glm::dmat3 Q(1.0);
+  if (sin_t > 1e-12) {  // Rodrigues: Q = I + sin θ K + (1 − cos θ) K²
+    const glm::dvec3 u = k / sin_t;
+    const glm::dmat3 K(0.0, u.z, -u.y, -u.z, 0.0, u.x, u.y, -u.x, 0.0);
+    Q = glm::dmat3(1.0) + sin_t * K + (1.0 - cos_t) * (K * K);
+  }
+  const EulerBunge e = bunge_from_crystal_to_sample(Q * L0);
+  return {e.phi1_rad * 180.0 / kPi, e.Phi_rad * 180.0 / kPi, e.phi2_rad * 180.0 / kPi};
+}
+
+// The habit axis a phase's fabric aligns (crystal frame): the prism axis or the plate normal.
+glm::dvec3 fabric_axis(const PhaseRecipe& ph) {
+  const MineralCrystallography* mc = find_mineral_crystallography(ph.mineral);
+  return ph.fabric->plate_normal ? plane_normal(mc->cell, *mc->habit.tabular)
+                                 : lattice_direction(mc->cell, *mc->habit.elongation);
+}
+
 PhaseModel phase_model(const PhaseRecipe& ph) {
   PhaseModel m;
   const MineralCrystallography* mc = find_mineral_crystallography(ph.mineral);
@@ -82,6 +120,7 @@ PhaseModel phase_model(const PhaseRecipe& ph) {
   m.volume_per_size3 = unit_volume(m.unit);
   m.rate_per_time = ph.csd.max_mm / (1.0 - ph.nucleation);
   csd_moments(ph.csd, m.mean_size, m.mean_size3);
+  if (ph.fabric) m.fabric_axis = fabric_axis(ph);
   return m;
 }
 
@@ -102,18 +141,25 @@ std::vector<GrownCrystal> sample_phase(const RockRecipe& r, int k, const PhaseMo
     c.nucleus_mm = {(rng.uniform() - 0.5) * w, (rng.uniform() - 0.5) * h, (2.0 * rng.uniform() - 1.0) * R * c.size_mm};
     c.from = 1.0 - c.size_mm / m.rate_per_time;
     c.euler_deg = uniform_euler_deg(phase_seed, i);
+    if (ph.fabric) c.euler_deg = aligned(c.euler_deg, *ph.fabric, m.fabric_axis, rng);
     c.twinned = ph.twin && rng.uniform() < ph.twin->fraction;
   }
   return out;
 }
 
+glm::dmat3 crystal_frame(const GrownCrystal& c) {
+  const auto& e = c.euler_deg;
+  return crystal_to_sample_from_bunge({e[0] * kPi / 180.0, e[1] * kPi / 180.0, e[2] * kPi / 180.0});
+}
+
+// A granoblastic rock's grains are balls (their neighbours set their boundaries), others their
+// habit polyhedra.
 GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crystals, const std::vector<PhaseModel>& models) {
   std::vector<GrainGrowth> g(crystals.size());
   for (std::size_t i = 0; i < crystals.size(); ++i) {
     const GrownCrystal& c = crystals[i];
-    const auto& e = c.euler_deg;
-    const glm::dmat3 L = crystal_to_sample_from_bunge({e[0] * kPi / 180.0, e[1] * kPi / 180.0, e[2] * kPi / 180.0});
-    g[i] = {c.nucleus_mm, c.from, 1.0, placed(models[c.phase].unit, L, c.size_mm)};
+    g[i] = {c.nucleus_mm, c.from, 1.0,
+            r.granoblastic ? sphere_polyhedron(c.size_mm) : placed(models[c.phase].unit, crystal_frame(c), c.size_mm)};
   }
   return GrownTiling(std::move(g), !r.matrix_mineral.empty(), r.width_mm, r.height_mm);
 }
@@ -166,9 +212,69 @@ nlohmann::json zones_json(const PhaseRecipe& ph) {
   return zones;
 }
 
+// Each crystal's area in the section, on a raster finer than the smallest crystal (min_size_mm).
+void measure_areas(const RockRecipe& r, const GrownTiling& t, double min_size_mm, std::vector<GrownCrystal>& crystals) {
+  const double step = std::max(min_size_mm / 3.0, std::max(r.width_mm, r.height_mm) / 2000.0);
+  const int fx = static_cast<int>(std::ceil(r.width_mm / step)), fy = static_cast<int>(std::ceil(r.height_mm / step));
+  const auto counts = owner_counts(r, t, fx, fy);
+  const double pixel_mm2 = r.width_mm * r.height_mm / (double(fx) * fy);
+  for (std::size_t i = 0; i < crystals.size(); ++i) crystals[i].area_mm2 = static_cast<double>(counts[i]) * pixel_mm2;
+}
+
+// A granoblastic rock: nuclei Lloyd-relaxed in a box two grains wider than the section on every
+// side and two grains above and below it (the cells the section cuts lie away from the box's
+// walls, where the relaxation is one-sided), each a ball of the grain size growing from time 0:
+// the section is the relaxed aggregate's Voronoi cells. Phases go to the cells in a random order
+// by the modes' quotas (the cells are nearly equal, so the volume fractions are the modes).
+RockGrowth grow_foam(const RockRecipe& r, std::uint64_t seed) {
+  const GranoblasticRecipe& f = *r.granoblastic;
+  const double d = f.grain_mm, margin = 2.0 * d;
+  const FoamBox box{{-0.5 * r.width_mm - margin, -0.5 * r.height_mm - margin, -margin},
+                    {0.5 * r.width_mm + margin, 0.5 * r.height_mm + margin, margin}};
+  const glm::dvec3 e = box.hi - box.lo;
+  const double volume = e.x * e.y * e.z, cell_volume = kPi / 6.0 * d * d * d;
+  const auto count = static_cast<std::size_t>(std::max(1.0, std::round(volume / cell_volume)));
+  const std::vector<glm::dvec3> nuclei = relaxed_foam_nuclei(box, count, f.relax_iterations, seed);
+  std::vector<std::size_t> order(count);
+  Random rng(splitmix64(seed ^ 0xF0A4ull));
+  for (std::size_t i = 0; i < count; ++i) order[i] = i;
+  for (std::size_t i = count; i > 1; --i) std::swap(order[i - 1], order[static_cast<std::size_t>(rng.uniform() * double(i)) % i]);
+  RockGrowth out;
+  std::vector<GrownCrystal> crystals(count);
+  std::vector<double> cumulative;
+  double sum = 0.0;
+  for (const PhaseRecipe& ph : r.phases) cumulative.push_back(sum += ph.mode_percent / 100.0);
+  out.density_per_mm3.assign(r.phases.size(), 0.0);
+  for (std::size_t q = 0; q < count; ++q) {
+    GrownCrystal& c = crystals[order[q]];
+    const double u = (double(q) + 0.5) / double(count) * sum;
+    c.phase = static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
+    c.phase = std::min(c.phase, static_cast<int>(r.phases.size()) - 1);
+    out.density_per_mm3[c.phase] += 1.0 / volume;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    GrownCrystal& c = crystals[i];
+    const PhaseRecipe& ph = r.phases[c.phase];
+    c.nucleus_mm = nuclei[i];
+    c.size_mm = d;
+    c.from = 0.0;
+    c.euler_deg = uniform_euler_deg(splitmix64(seed ^ 0xF0A5ull), i);
+    if (ph.fabric) c.euler_deg = aligned(c.euler_deg, *ph.fabric, fabric_axis(ph), rng);
+    c.twinned = ph.twin && rng.uniform() < ph.twin->fraction;
+  }
+  const GrownTiling t = tiling_of(r, crystals, {});
+  const int nx = static_cast<int>(std::ceil(250.0 * r.width_mm / std::max(r.width_mm, r.height_mm)));
+  const int ny = static_cast<int>(std::ceil(250.0 * r.height_mm / std::max(r.width_mm, r.height_mm)));
+  measure_phases(r, crystals, owner_counts(r, t, nx, ny), out);
+  measure_areas(r, t, d, crystals);
+  out.crystals = std::move(crystals);
+  return out;
+}
+
 }  // namespace
 
 RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
+  if (r.granoblastic) return grow_foam(r, seed);
   std::vector<PhaseModel> models;
   RockGrowth out;
   for (const PhaseRecipe& ph : r.phases) {
@@ -198,15 +304,10 @@ RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
       out.density_per_mm3[k] *= std::clamp(ratio, 0.3, 3.0);
     }
   }
-  // Keep the crystals that own part of the section on a raster finer than the smallest crystal.
+  // Keep the crystals that own part of the section.
   double min_size = 1e300;
   for (const PhaseRecipe& ph : r.phases) min_size = std::min(min_size, ph.csd.min_mm);
-  const double step = std::max(min_size / 3.0, std::max(r.width_mm, r.height_mm) / 2000.0);
-  const GrownTiling t = tiling_of(r, crystals, models);
-  const int fx = static_cast<int>(std::ceil(r.width_mm / step)), fy = static_cast<int>(std::ceil(r.height_mm / step));
-  const auto counts = owner_counts(r, t, fx, fy);
-  const double pixel_mm2 = r.width_mm * r.height_mm / (double(fx) * fy);
-  for (std::size_t i = 0; i < crystals.size(); ++i) crystals[i].area_mm2 = static_cast<double>(counts[i]) * pixel_mm2;
+  measure_areas(r, tiling_of(r, crystals, models), min_size, crystals);
   out.crystals = std::move(crystals);
   return out;
 }
@@ -221,6 +322,7 @@ nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::
                         {"size_mm", c.size_mm},
                         {"euler_deg", {c.euler_deg[0], c.euler_deg[1], c.euler_deg[2]}},
                         {"growth", {{"nucleus_z_mm", c.nucleus_mm.z}, {"from", c.from}, {"to", 1.0}}}};
+    if (r.granoblastic) j["growth"]["shape"] = "sphere";
     if (ph.aspect) j["aspect"] = *ph.aspect;
     if (ph.zoning) j["zones"] = zones_json(ph);
     if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};

@@ -8,6 +8,7 @@
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/crystal/crystal.h"
+#include "core/crystal/mineral_crystallography.h"
 
 namespace pmsim {
 
@@ -21,18 +22,22 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
   }
 }
 
-PhaseRecipe read_phase(const JsonReader& pr) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "source"});
+PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
   p.name = pr.get_or<std::string>("name", p.mineral);
   p.mode_percent = pr.require<double>("mode_percent", Range::open_closed(0, 100));
-  const JsonReader c = pr.object("csd");
-  p.csd.slope_per_mm = c.require<double>("slope_per_mm", Range::open(-1e6, 0));
-  p.csd.min_mm = c.require<double>("min_mm", Range::above(0));
-  p.csd.max_mm = c.require<double>("max_mm", Range::above(0));
-  if (!(p.csd.max_mm > p.csd.min_mm)) c.fail("max_mm", "the size range is empty (max_mm must exceed min_mm)");
+  if (granoblastic) {
+    if (pr.has("csd")) pr.fail("csd", "a granoblastic rock's grains take their size from \"granoblastic\".grain_mm");
+  } else {
+    const JsonReader c = pr.object("csd");
+    p.csd.slope_per_mm = c.require<double>("slope_per_mm", Range::open(-1e6, 0));
+    p.csd.min_mm = c.require<double>("min_mm", Range::above(0));
+    p.csd.max_mm = c.require<double>("max_mm", Range::above(0));
+    if (!(p.csd.max_mm > p.csd.min_mm)) c.fail("max_mm", "the size range is empty (max_mm must exceed min_mm)");
+  }
   p.nucleation = pr.get_or("nucleation", 0.0, Range::closed(0, 0.99));
   p.aspect = pr.optional<double>("aspect", Range::at_least(1));
   if (const auto z = pr.optional_object("zoning")) {
@@ -54,6 +59,19 @@ PhaseRecipe read_phase(const JsonReader& pr) {
     tr.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
     tr.fraction = t->get_or("fraction", 1.0, Range::closed(0, 1));
     p.twin = tr;
+  }
+  if (const auto f = pr.optional_object("fabric")) {
+    FabricRecipe fr;
+    const std::string align = f->require<std::string>("align");
+    if (align != "elongation" && align != "plate_normal") f->fail("align", "expected \"elongation\" or \"plate_normal\"");
+    const MineralCrystallography* mc = find_mineral_crystallography(p.mineral);
+    if (!mc || (align == "elongation" ? !mc->habit.elongation : !mc->habit.tabular))
+      f->fail("align", "the mineral file gives no " + std::string(align == "elongation" ? "elongation" : "tabular plane") +
+                           " to align");
+    fr.plate_normal = align == "plate_normal";
+    fr.direction = f->require_unit_vector("direction");
+    fr.spread_deg = f->get_or("spread_deg", 15.0, Range::closed(0, 90));
+    p.fabric = fr;
   }
   return p;
 }
@@ -83,9 +101,16 @@ RockRecipe read_rock_recipe(const std::string& path) {
     rr.matrix_mineral = m->require<std::string>("mineral");
     known_mineral(*m, "mineral", rr.matrix_mineral);
   }
+  if (const auto g = r.optional_object("granoblastic")) {
+    if (!rr.matrix_mineral.empty()) r.fail("granoblastic", "a granoblastic rock is holocrystalline: it has no matrix");
+    GranoblasticRecipe gr;
+    gr.grain_mm = g->require<double>("grain_mm", Range::closed(0.01, 10));
+    gr.relax_iterations = g->get_or("relax_iterations", 12, Range::closed(0, 100));
+    rr.granoblastic = gr;
+  }
   double total = 0.0;
   for (const JsonReader& pr : r.objects("phases", 1)) {
-    rr.phases.push_back(read_phase(pr));
+    rr.phases.push_back(read_phase(pr, rr.granoblastic.has_value()));
     total += rr.phases.back().mode_percent;
   }
   if (total > 100.0 + 1e-9) r.fail("phases", "the modes sum to " + std::to_string(total) + " %, over 100");

@@ -14,7 +14,11 @@
 //                "zoning": {"kind": "oscillatory|normal", "core": 60, "rim": 40,
 //                           "amplitude": 6, "bands": 12},          (optional; composition numbers)
 //                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
-//                "source": "..."}, ...]}
+//                "fabric": {"align": "elongation|plate_normal", "direction": [1, 0, 0],
+//                           "spread_deg": 15},  (optional: a shape-preferred orientation)
+//                "source": "..."}, ...],
+//  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -43,6 +47,16 @@ struct TwinRecipe {
   double fraction = 1.0;    // of the phase's crystals
 };
 
+// A preferred orientation: the habit's prism axis (lineation) or plate normal (foliation pole) of
+// each crystal drawn about `direction` (section frame, x east, y north, z up) with a Gaussian
+// spread of spread_deg, the rotation about it uniform (nematoblastic amphibole, micas in a
+// schist: Passchier & Trouw 2005, Microtectonics, ch. 4).
+struct FabricRecipe {
+  bool plate_normal = false;
+  std::array<double, 3> direction{1.0, 0.0, 0.0};
+  double spread_deg = 15.0;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -51,10 +65,21 @@ struct PhaseRecipe {
   std::optional<double> aspect;
   std::optional<ZoningRecipe> zoning;
   std::optional<TwinRecipe> twin;
+  std::optional<FabricRecipe> fabric;
+};
+
+// A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
+// nearly equal grains meeting at ~120° (foam_relaxation.h). The phases then give minerals and
+// modes (no CSD: relaxation makes the sizes nearly equal); every cell takes a phase at random
+// in proportion to the modes.
+struct GranoblasticRecipe {
+  double grain_mm = 0.3;     // the cells' mean equivalent-sphere diameter
+  int relax_iterations = 12; // Lloyd steps; 0 keeps the Poisson–Voronoi aggregate
 };
 
 struct RockRecipe {
   std::string path, name, source, texture;
+  std::optional<GranoblasticRecipe> granoblastic;
   std::uint64_t seed = 1;
   double width_mm = 8.0, height_mm = 6.0, thickness_um = 30.0;
   std::string matrix_mineral;  // empty: holocrystalline, the crystals fill the rock
