@@ -25,6 +25,10 @@ json grain_report_json(const GrainReport& r) {
             // published optical orientation or a stand-in on the crystal frame (issue 22).
             {"optics", grain_optics_name(r)}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
+  if (r.subgrains)
+    j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
+                      {"step_deg", r.subgrains->step_deg},
+                      {"extinction_sweep_deg", r.subgrains->extinction_sweep_deg ? json(*r.subgrains->extinction_sweep_deg) : json(nullptr)}};
   // The compensator test by brightness (render/brightness_test.h): the luminance at 45° alone,
   // with the accessory adding and subtracting, and which way it reads.
   if (r.retardation_nm > 0.0) {

@@ -40,6 +40,24 @@ SectionOptics optics_of(const SectionGrain& g, const glm::dmat3& orientation, do
   return section_optics(orientation, n, kSectionNormal);
 }
 
+GrainSubgrainReport subgrain_report(const SectionGrain& g) {
+  GrainSubgrainReport r{g.subgrain_mm, g.subgrain_step_deg, std::nullopt};
+  const int half = (g.subgrain_count() - 1) / 2;
+  const int within = std::min(half, static_cast<int>(std::floor(g.semi_major_mm / g.subgrain_mm + 0.5)));
+  double first = 0.0, lo = 0.0, hi = 0.0;
+  for (int k = -within; k <= within; ++k) {
+    const SectionOptics s = optics_of(g, g.subgrain_rotation[std::size_t(half + k)] * g.orientation,
+                                      kGrainReportIndexWavelengthNm);
+    if (s.circular) return r;
+    const double a = std::atan2(s.slow.y, s.slow.x) * 180.0 / kPi;
+    if (k == -within) first = a;
+    const double rel = std::remainder(a - first, 180.0);  // lines: modulo 180°
+    lo = std::min(lo, rel), hi = std::max(hi, rel);
+  }
+  r.extinction_sweep_deg = hi - lo;
+  return r;
+}
+
 // The library's crystallography of a grain placed by its lattice (a mineral with a unit cell and
 // a section grain given by euler_deg); else nullptr.
 const MineralCrystallography* crystallography_of(const SectionGrain& g) {
@@ -146,8 +164,10 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     r.extinction_angle_deg.reset();
     r.sign_of_elongation.reset();
     if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}};
+    if (!g.subgrain_rotation.empty()) r.subgrains = GrainSubgrainReport{g.subgrain_mm, g.subgrain_step_deg, std::nullopt};
     return r;
   }
+  if (!g.subgrain_rotation.empty()) r.subgrains = subgrain_report(g);
   if (g.twinned)
     r.twin = GrainTwinReport{
         g.twin_law, extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm),

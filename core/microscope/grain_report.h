@@ -33,6 +33,15 @@ struct GrainTwinReport {
   std::vector<double> extinction_stage_deg;  // of the twin individual (odd lamellae)
 };
 
+// A grain with undulose extinction (SectionGrain subgrains): its bands and how far its extinction
+// sweeps across the grain, the range of the host's slow-direction angle over the bands within
+// the grain's longest radius of its centre (0 when the bend axis lies in the section along the
+// vibration directions; not defined in a circular section).
+struct GrainSubgrainReport {
+  double width_mm = 0.0, step_deg = 0.0;
+  std::optional<double> extinction_sweep_deg;
+};
+
 struct GrainReport {
   int id = 0;           // the grain's label (SectionMap::grain_label)
   std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
@@ -53,6 +62,7 @@ struct GrainReport {
   // circular section. What the app's overlay draws.
   std::optional<double> slow_vibration_deg;
   std::optional<GrainTwinReport> twin;
+  std::optional<GrainSubgrainReport> subgrains;
   // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
   // and crossed light, so nothing above is observable in transmitted light — the extinction
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left

@@ -62,44 +62,56 @@ double hash01(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d
 
 }  // namespace
 
-const Crystal* SectionMap::crystal_of_domain(int d) const {
-  if (d < 2 || domain_grain_[d] < 0) return nullptr;
-  const SectionGrain& g = grains[domain_grain_[d]];
-  const int per_zone = g.twinned ? 2 : 1;
-  return g.zones[(d - g.first_domain) / per_zone].crystal;
+DomainPart SectionMap::domain_part(int d) const {
+  DomainPart part;
+  if (d < 2 || domain_grain_[d] < 0) return part;
+  part.grain = domain_grain_[d];
+  const SectionGrain& g = grains[part.grain];
+  const int per_twin = g.twinned ? 2 : 1, subgrains = g.subgrain_count(), k = d - g.first_domain;
+  part.subgrain = k % subgrains;
+  part.twin = (k / subgrains) % per_twin;
+  part.zone = k / subgrains / per_twin;
+  return part;
 }
 
-const glm::dmat3& SectionMap::orientation_of_domain(int d) const {
-  static const glm::dmat3 identity(1.0);
-  if (d < 2 || domain_grain_[d] < 0) return identity;
-  const SectionGrain& g = grains[domain_grain_[d]];
-  const int per_zone = g.twinned ? 2 : 1, k = d - g.first_domain;
-  const SectionZone& z = g.zones[k / per_zone];
-  return (k % per_zone) ? z.twin_orientation : z.orientation;
+const Crystal* SectionMap::crystal_of_domain(int d) const {
+  const DomainPart part = domain_part(d);
+  return part.grain < 0 ? nullptr : grains[part.grain].zones[part.zone].crystal;
 }
+
+const glm::dmat3& SectionMap::orientation_of_domain(int d) const { return domain_orientation_[d]; }
 
 const std::string& SectionMap::mineral_of_domain(int d) const {
   static const std::string slide = "slide", medium = "mounting medium", opaque = "non-indexed (black)";
   if (d == kSlideDomain) return slide;
   if (d == kMediumDomain) return medium;
-  if (domain_grain_[d] < 0) return opaque;
-  const SectionGrain& g = grains[domain_grain_[d]];
-  return g.zones[(d - g.first_domain) / (g.twinned ? 2 : 1)].mineral;
+  const DomainPart part = domain_part(d);
+  if (part.grain < 0) return opaque;
+  return grains[part.grain].zones[part.zone].mineral;
 }
 
 void SectionMap::finish() {
   domain_grain_.assign(2, -1);
+  domain_orientation_.assign(2, glm::dmat3(1.0));
   grown_.reset();
   grown_grain_.clear();
   matrix_grain_ = -1;
   for (std::size_t i = 0; i < grains.size(); ++i) {
     SectionGrain& g = grains[i];
     g.first_domain = static_cast<int>(domain_grain_.size());
-    const std::size_t n = g.zones.size() * (g.twinned ? 2 : 1);
-    domain_grain_.insert(domain_grain_.end(), n, static_cast<int>(i));
+    for (const SectionZone& z : g.zones)
+      for (int twin = 0; twin < (g.twinned ? 2 : 1); ++twin)
+        for (int sub = 0; sub < g.subgrain_count(); ++sub) {
+          const glm::dmat3& o = twin ? z.twin_orientation : z.orientation;
+          domain_orientation_.push_back(g.subgrain_rotation.empty() ? o : g.subgrain_rotation[sub] * o);
+          domain_grain_.push_back(static_cast<int>(i));
+        }
   }
   if (raster) {  // domain_at reads the raster: no tiling grid
-    if (has_opaque_domain) domain_grain_.push_back(-1);
+    if (has_opaque_domain) {
+      domain_grain_.push_back(-1);
+      domain_orientation_.push_back(glm::dmat3(1.0));
+    }
     cell_start_.clear();
     cell_grains_.clear();
     return;
@@ -284,7 +296,13 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
     const double t = glm::dot(d, g.twin_normal);
     twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
   }
-  return g.first_domain + zone * (g.twinned ? 2 : 1) + twin;
+  int sub = 0;
+  if (const int n = g.subgrain_count(); n > 1) {  // bands centred on the grain's centre; the outer two take the rest
+    const int half = (n - 1) / 2;
+    const double band = std::round(glm::dot(d, g.subgrain_normal) / g.subgrain_mm);
+    sub = half + static_cast<int>(std::clamp(band, -double(half), double(half)));
+  }
+  return g.first_domain + (zone * (g.twinned ? 2 : 1) + twin) * g.subgrain_count() + sub;
 }
 
 int DomainRaster::domain_at(const glm::dvec2& p, int outside) const {
@@ -318,6 +336,18 @@ glm::dmat3 half_turn(const glm::dvec3& u) {
   glm::dmat3 r(0.0);
   for (int c = 0; c < 3; ++c)
     for (int rr = 0; rr < 3; ++rr) r[c][rr] = 2.0 * u[c] * u[rr] - (c == rr ? 1.0 : 0.0);
+  return r;
+}
+
+// Rotation by angle θ about unit axis u (Rodrigues): R = cos θ I + sin θ [u]× + (1 − cos θ) uuᵀ.
+glm::dmat3 axis_rotation(const glm::dvec3& u, double theta_rad) {
+  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
+  glm::dmat3 r(0.0);  // r[column][row]
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) r[col][row] = (1.0 - c) * u[row] * u[col] + (row == col ? c : 0.0);
+  r[1][0] -= s * u.z, r[0][1] += s * u.z;  // [u]× = ((0, −z, y), (z, 0, −x), (−y, x, 0)) by rows
+  r[2][0] += s * u.y, r[0][2] -= s * u.y;
+  r[2][1] -= s * u.x, r[1][2] += s * u.x;
   return r;
 }
 
@@ -567,11 +597,33 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     }
 }
 
+// "subgrains": {"width_mm": w, "step_deg": s, "axis": [x, y, z], "wall_normal": [x, y, z]}
+// (section frame). The bands cover the grain's longest extent on either side of its centre
+// (the outer two take whatever of a grown grain lies further); a misorientation step above 15°
+// is a high-angle boundary, a new grain rather than a subgrain (Passchier & Trouw 2005, §3.7).
+void read_subgrains(const JsonReader& gr, SectionGrain& g) {
+  const auto sg = gr.optional_object("subgrains");
+  if (!sg) return;
+  g.subgrain_mm = sg->require<double>("width_mm", Range::above(0));
+  g.subgrain_step_deg = sg->require<double>("step_deg", Range::open_closed(0, 15));
+  const auto a = numbers(*sg, "axis", 3), n = numbers(*sg, "wall_normal", 3);
+  const glm::dvec3 axis{a[0], a[1], a[2]}, wall{n[0], n[1], n[2]};
+  if (!(glm::length(axis) > 0.0)) sg->fail("axis", "the bend axis must be a non-zero vector");
+  const glm::dvec2 trace_normal{wall.x, wall.y};
+  if (!(glm::length(trace_normal) > 1e-6 * glm::length(wall)))
+    sg->fail("wall_normal", "walls parallel to the section have no trace in it (a vertical normal)");
+  g.subgrain_normal = glm::normalize(trace_normal);
+  const int half = static_cast<int>(std::ceil(2.0 * g.semi_major_mm / g.subgrain_mm - 1e-9));  // 5.0000001 is 5
+  if (half > 200) sg->fail("width_mm", "over 401 subgrains across the grain: wider bands, please");
+  const glm::dvec3 u = glm::normalize(axis);
+  for (int k = -half; k <= half; ++k) g.subgrain_rotation.push_back(axis_rotation(u, radians(k * g.subgrain_step_deg)));
+}
+
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
 // reports, is the section's extent).
 void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
-  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect"})
-    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones or twins of its own");
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins or subgrains of its own");
   g.matrix = true;
   g.centre_mm = {0.0, 0.0};
   set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
@@ -638,6 +690,7 @@ SectionMap parse_section(const json& j, const std::string& path) {
       read_matrix_grain(gr, g, m);
     else
       read_grain(gr, g, m.thickness_um);
+    if (!g.matrix) read_subgrains(gr, g);
     if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
     m.grains.push_back(std::move(g));
   }

@@ -10,7 +10,7 @@
 // cleavage cracks along the traces of the cleavage planes, filled with mounting medium.
 //
 // Optical domains: 0 the slide beyond the section's extent, 1 the mounting medium in cracks (both
-// without a crystal), then per grain zones × twin individuals.
+// without a crystal), then per grain zones × twin individuals × subgrains.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -87,6 +87,18 @@ struct SectionGrain {
   double lamella_mm = 0.0;           // lamella width; 0: a simple twin (one composition plane)
   glm::dvec2 twin_normal{0.0, 1.0};  // unit normal of the trace in the section
 
+  // Undulose extinction ("subgrains" in a section file): the lattice bent about an axis and
+  // polygonized into subgrains, bands subgrain_mm wide between parallel low-angle tilt walls, each
+  // band turned by one step about the bend axis from its neighbour (recovery of a bent crystal:
+  // Cahn 1949, J. Inst. Metals 76, 121; Passchier & Trouw 2005, Microtectonics, §3.4 and §3.7).
+  // Per band the rotation applied to every zone and twin orientation; the middle band keeps the
+  // grain's own. Empty: no subgrains.
+  std::vector<glm::dmat3> subgrain_rotation;
+  glm::dvec2 subgrain_normal{1.0, 0.0};  // unit normal of the walls' trace in the section
+  double subgrain_mm = 0.0;
+  double subgrain_step_deg = 0.0;
+  int subgrain_count() const { return subgrain_rotation.empty() ? 1 : static_cast<int>(subgrain_rotation.size()); }
+
   // Grown grains (core/texture/grown_tiling.h; "growth" in a section file; all or none of a
   // section's grains but its matrix): the tiling is by arrival time and the
   // zones are growth zones, zone outer_fraction the fraction of the growth time (from → to), so
@@ -98,7 +110,9 @@ struct SectionGrain {
 
   std::vector<SectionZone> zones;  // inner to outer, at least one
   std::vector<CleavageCracks> cracks;
-  int first_domain = 2;  // domains first_domain … first_domain + zones·(twinned ? 2 : 1) − 1
+  // Domains first_domain … first_domain + zones·(twinned ? 2 : 1)·subgrain_count() − 1, in the
+  // order zone, twin individual, subgrain (the last varying fastest).
+  int first_domain = 2;
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
@@ -114,6 +128,12 @@ struct DomainRaster {
 
   // The domain under section point p; `outside` beyond the points' rectangles.
   int domain_at(const glm::dvec2& p_mm, int outside) const;
+};
+
+// Where a crystal domain lies in its grain (SectionMap::domain_part).
+struct DomainPart {
+  int grain = -1;  // index into grains; −1 for the slide, the medium and a raster's opaque domain
+  int zone = 0, twin = 0, subgrain = 0;
 };
 
 class SectionMap {
@@ -145,6 +165,7 @@ class SectionMap {
   const Crystal* crystal_of_domain(int d) const;
   const glm::dmat3& orientation_of_domain(int d) const;
   const std::string& mineral_of_domain(int d) const;
+  DomainPart domain_part(int d) const;
 
   // A raster section (an EBSD map): domain_at looks points up here, not in the grain tiling; the
   // grains are the map's reconstructed grains and their zones its orientation clusters. Null for
@@ -173,6 +194,7 @@ class SectionMap {
   int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;
 
   std::vector<int> domain_grain_;  // per domain: grain index, −1 for slide and medium
+  std::vector<glm::dmat3> domain_orientation_;  // per domain (identity without a crystal)
   // Grid over the section's extent; per cell the grains that can be nearest in it, in index order.
   int cells_x_ = 0, cells_y_ = 0;
   double cell_mm_ = 1.0;

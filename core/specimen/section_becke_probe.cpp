@@ -48,10 +48,10 @@ struct SlabMedia {
     s.grain = map.grain_label(s.domain);
     s.mineral = map.mineral_of_domain(s.domain);
     const SectionGrain& g = map.grain_by_label(s.grain);
-    const int per_zone = g.twinned ? 2 : 1, k = s.domain - g.first_domain;
-    s.zone = k / per_zone;
+    const DomainPart part = map.domain_part(s.domain);
+    s.zone = part.zone;
     s.zone_count = int(g.zones.size());
-    s.twin = g.twinned ? k % per_zone : -1;
+    s.twin = g.twinned ? part.twin : -1;
     s.n = vibration_index(*map.crystal_of_domain(s.domain), map.orientation_of_domain(s.domain),
                           kBeckeWavelengthNm, vibration);
     return s;

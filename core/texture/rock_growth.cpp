@@ -312,8 +312,31 @@ RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
   return out;
 }
 
+// A bent crystal's subgrains (section_map.h): a bend axis uniform on the sphere and tilt walls
+// containing it (wall normal ⟂ axis, uniform about it). Walls within ~25° of the section plane
+// (|n_z| > 0.9) are drawn again: they would smear across the 30 µm section rather than show as bands.
+nlohmann::json subgrains_json(const UnduloseRecipe& u, Random& rng) {
+  const auto gaussian3 = [&] {
+    glm::dvec3 g;
+    for (int k = 0; k < 3; ++k) {  // Box–Muller
+      const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
+      g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+    }
+    return g;
+  };
+  const glm::dvec3 axis = glm::normalize(gaussian3());
+  glm::dvec3 wall;
+  do {
+    const glm::dvec3 v = gaussian3();
+    wall = glm::normalize(v - glm::dot(v, axis) * axis);
+  } while (std::abs(wall.z) > 0.9);
+  return {{"width_mm", u.subgrain_mm}, {"step_deg", u.step_deg}, {"axis", {axis.x, axis.y, axis.z}},
+          {"wall_normal", {wall.x, wall.y, wall.z}}};
+}
+
 nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed) {
   nlohmann::json grains = nlohmann::json::array();
+  Random rng(splitmix64(seed ^ 0x5B9A1Full));
   for (const GrownCrystal& c : g.crystals) {
     if (!(c.area_mm2 > 0.0)) continue;
     const PhaseRecipe& ph = r.phases[c.phase];
@@ -326,6 +349,7 @@ nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::
     if (ph.aspect) j["aspect"] = *ph.aspect;
     if (ph.zoning) j["zones"] = zones_json(ph);
     if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
+    if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
     grains.push_back(std::move(j));
   }
   if (!r.matrix_mineral.empty()) grains.push_back({{"mineral", r.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}});

@@ -23,7 +23,7 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
 }
 
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -72,6 +72,12 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     fr.direction = f->require_unit_vector("direction");
     fr.spread_deg = f->get_or("spread_deg", 15.0, Range::closed(0, 90));
     p.fabric = fr;
+  }
+  if (const auto u = pr.optional_object("undulose")) {
+    UnduloseRecipe ur;
+    ur.subgrain_mm = u->require<double>("subgrain_mm", Range::above(0));
+    ur.step_deg = u->require<double>("step_deg", Range::open_closed(0, 15));
+    p.undulose = ur;
   }
   return p;
 }

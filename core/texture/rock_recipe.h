@@ -16,6 +16,7 @@
 //                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
 //                "fabric": {"align": "elongation|plate_normal", "direction": [1, 0, 0],
 //                           "spread_deg": 15},  (optional: a shape-preferred orientation)
+//                "undulose": {"subgrain_mm": 0.05, "step_deg": 1.5},  (optional: bent, polygonized)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -57,6 +58,14 @@ struct FabricRecipe {
   double spread_deg = 15.0;
 };
 
+// Undulose extinction: every crystal of the phase bent about a random axis and polygonized into
+// subgrain bands subgrain_mm wide, step_deg apart across each tilt wall (section_map.h "subgrains";
+// Passchier & Trouw 2005, Microtectonics, §3.4 and §3.7).
+struct UnduloseRecipe {
+  double subgrain_mm = 0.05;
+  double step_deg = 1.5;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -66,6 +75,7 @@ struct PhaseRecipe {
   std::optional<ZoningRecipe> zoning;
   std::optional<TwinRecipe> twin;
   std::optional<FabricRecipe> fabric;
+  std::optional<UnduloseRecipe> undulose;
 };
 
 // A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
