@@ -474,9 +474,14 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
   const double size = gr.require<double>("size_mm", Range::above(0));
   // The crystal's shape: an ellipsoid whose longest axis is size_mm, along the habit.
   glm::dmat3 Q = outer({1, 0, 0}, 0.5 * size) + outer({0, 1, 0}, 0.5 * size) + outer({0, 0, 1}, 0.5 * size);
-  const bool habit = has_lattice && (mc->habit.elongation || mc->habit.tabular);
+  // A "sphere" grain (granoblastic, or a rounded detrital grain) has no habit to show: its
+  // ellipse, and so the report's elongation, is the ball's.
+  const auto growth_json = gr.optional_object("growth");
+  const bool ball = growth_json && growth_json->get_or<std::string>("shape", "habit") == "sphere";
+  const bool habit = has_lattice && (mc->habit.elongation || mc->habit.tabular) && !ball;
+  if (ball && gr.has("aspect")) gr.fail("aspect", "a \"sphere\" grain is a ball: it has no aspect");
   const double aspect = habit ? gr.get_or("aspect", default_habit_aspect(mc), Range::at_least(1)) : 1.0;
-  if (const auto gw = gr.optional_object("growth")) {
+  if (const auto& gw = growth_json) {
     GrainGrowth growth;
     growth.nucleus_mm = {g.centre_mm.x, g.centre_mm.y, gw->get_or("nucleus_z_mm", 0.0)};
     growth.from = gw->require<double>("from");

@@ -23,7 +23,7 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
 }
 
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -40,6 +40,12 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
   }
   p.nucleation = pr.get_or("nucleation", 0.0, Range::closed(0, 0.99));
   p.aspect = pr.optional<double>("aspect", Range::at_least(1));
+  const std::string shape = pr.get_or<std::string>("shape", "habit");
+  if (shape != "habit" && shape != "rounded") pr.fail("shape", "expected \"habit\" or \"rounded\"");
+  p.rounded = shape == "rounded";
+  if (p.rounded && granoblastic) pr.fail("shape", "a granoblastic rock's grains are shaped by their neighbours");
+  if (p.rounded && p.aspect) pr.fail("aspect", "a rounded grain is a ball: it has no aspect");
+  if (p.rounded && pr.has("fabric")) pr.fail("fabric", "a rounded grain (a ball) has no axis to align");
   if (const auto z = pr.optional_object("zoning")) {
     ZoningRecipe zr;
     const std::string kind = z->require<std::string>("kind");

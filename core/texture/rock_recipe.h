@@ -11,6 +11,7 @@
 //                "csd": {"slope_per_mm": -3.0, "min_mm": 0.3, "max_mm": 2.5, "source": "..."},
 //                "nucleation": 0.0,          (when the phase begins, 0 … 1 of the cooling time)
 //                "aspect": 3,                (optional; the mineral's default otherwise)
+//                "shape": "habit|rounded",   (optional: "rounded" detrital grains are balls)
 //                "zoning": {"kind": "oscillatory|normal", "core": 60, "rim": 40,
 //                           "amplitude": 6, "bands": 12},          (optional; composition numbers)
 //                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
@@ -72,6 +73,9 @@ struct PhaseRecipe {
   CsdRecipe csd;
   double nucleation = 0.0;
   std::optional<double> aspect;
+  // Detrital grains rounded by transport: balls of the CSD's sizes instead of the habit polyhedron
+  // (a sandstone's framework; with a matrix, the pores between them).
+  bool rounded = false;
   std::optional<ZoningRecipe> zoning;
   std::optional<TwinRecipe> twin;
   std::optional<FabricRecipe> fabric;
