@@ -68,6 +68,10 @@ DomainPart SectionMap::domain_part(int d) const {
   part.grain = domain_grain_[d];
   const SectionGrain& g = grains[part.grain];
   const int per_twin = g.twinned ? 2 : 1, subgrains = g.subgrain_count(), k = d - g.first_domain;
+  if (g.vein && k == static_cast<int>(g.zones.size()) * per_twin * subgrains) {
+    part.vein = true;
+    return part;
+  }
   part.subgrain = k % subgrains;
   part.twin = (k / subgrains) % per_twin;
   part.zone = k / subgrains / per_twin;
@@ -76,7 +80,8 @@ DomainPart SectionMap::domain_part(int d) const {
 
 const Crystal* SectionMap::crystal_of_domain(int d) const {
   const DomainPart part = domain_part(d);
-  return part.grain < 0 ? nullptr : grains[part.grain].zones[part.zone].crystal;
+  if (part.grain < 0) return nullptr;
+  return part.vein ? grains[part.grain].vein->crystal : grains[part.grain].zones[part.zone].crystal;
 }
 
 const glm::dmat3& SectionMap::orientation_of_domain(int d) const { return domain_orientation_[d]; }
@@ -87,7 +92,7 @@ const std::string& SectionMap::mineral_of_domain(int d) const {
   if (d == kMediumDomain) return medium;
   const DomainPart part = domain_part(d);
   if (part.grain < 0) return opaque;
-  return grains[part.grain].zones[part.zone].mineral;
+  return part.vein ? grains[part.grain].vein->mineral : grains[part.grain].zones[part.zone].mineral;
 }
 
 void SectionMap::finish() {
@@ -106,6 +111,10 @@ void SectionMap::finish() {
           domain_orientation_.push_back(g.subgrain_rotation.empty() ? o : g.subgrain_rotation[sub] * o);
           domain_grain_.push_back(static_cast<int>(i));
         }
+    if (g.vein) {
+      domain_orientation_.push_back(g.vein->orientation);
+      domain_grain_.push_back(static_cast<int>(i));
+    }
   }
   if (raster) {  // domain_at reads the raster: no tiling grid
     if (has_opaque_domain) {
@@ -243,6 +252,7 @@ int SectionMap::nearest_grain(const glm::dvec2& p) const {
 
 int SectionMap::crack_family_in_grain(int gi, const glm::dvec2& p, double crack_mm) const {
   const SectionGrain& g = grains[gi];
+  if (g.vein) crack_mm = std::max(crack_mm, g.vein->width_mm);
   const glm::dvec2 d = p - g.centre_mm;
   // Cleavage cracks: in family f, crack k lies near offset (k + ½ + jitter)·spacing along the
   // trace normal (jitter ±0.3 spacing) and is broken into segments 4 spacings long of which
@@ -271,8 +281,13 @@ int SectionMap::crack_family_at(const glm::dvec2& p, int& grain, double min_widt
   return f;
 }
 
+int SectionMap::crack_domain(int grain) const {
+  const SectionGrain& g = grains[std::size_t(grain)];
+  return g.vein ? g.first_domain + static_cast<int>(g.zones.size()) * (g.twinned ? 2 : 1) * g.subgrain_count() : kMediumDomain;
+}
+
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
-  if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return kMediumDomain;
+  if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
   const SectionGrain& g = grains[gi];
   const glm::dvec2 d = p - g.centre_mm;
   int zone = static_cast<int>(g.zones.size()) - 1;
@@ -624,11 +639,26 @@ void read_subgrains(const JsonReader& gr, SectionGrain& g) {
   for (int k = -half; k <= half; ++k) g.subgrain_rotation.push_back(axis_rotation(u, radians(k * g.subgrain_step_deg)));
 }
 
+// "alteration": {"mineral": m, "vein_mm": w, "euler_deg": [φ1, Φ, φ2]}: the grain's cracks are
+// veins w wide of mineral m in that orientation (its crystal frame to the section frame).
+void read_vein(const JsonReader& gr, SectionGrain& g) {
+  const auto a = gr.optional_object("alteration");
+  if (!a) return;
+  SectionGrain::VeinFill v;
+  v.mineral = a->require<std::string>("mineral");
+  v.crystal = &known_mineral(*a, "mineral", v.mineral);
+  v.width_mm = a->require<double>("vein_mm", Range::open_closed(0, 1));
+  const auto e = numbers(*a, "euler_deg", 3);
+  const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
+  v.orientation = indicatrix_in_section(find_mineral_crystallography(v.mineral), L);
+  g.vein = v;
+}
+
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
 // reports, is the section's extent).
 void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
-  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains"})
-    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins or subgrains of its own");
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains or veins of its own");
   g.matrix = true;
   g.centre_mm = {0.0, 0.0};
   set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
@@ -696,6 +726,7 @@ SectionMap parse_section(const json& j, const std::string& path) {
     else
       read_grain(gr, g, m.thickness_um);
     if (!g.matrix) read_subgrains(gr, g);
+    if (!g.matrix) read_vein(gr, g);
     if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
     m.grains.push_back(std::move(g));
   }

@@ -110,8 +110,19 @@ struct SectionGrain {
 
   std::vector<SectionZone> zones;  // inner to outer, at least one
   std::vector<CleavageCracks> cracks;
+  // Alteration along the cracks ("alteration" in a section file): the cracks are veins width_mm
+  // wide filled with a secondary mineral instead of open cracks — serpentine along the fractures
+  // of olivine, the mesh texture of serpentinised peridotite (Wicks & Whittaker 1977, Can.
+  // Mineral. 15, 459–488). One optical domain, after the grain's others.
+  struct VeinFill {
+    std::string mineral;
+    const Crystal* crystal = nullptr;
+    glm::dmat3 orientation{1.0};  // indicatrix columns in the section frame
+    double width_mm = 0.0;
+  };
+  std::optional<VeinFill> vein;
   // Domains first_domain … first_domain + zones·(twinned ? 2 : 1)·subgrain_count() − 1, in the
-  // order zone, twin individual, subgrain (the last varying fastest).
+  // order zone, twin individual, subgrain (the last varying fastest); then the vein's, if any.
   int first_domain = 2;
 };
 
@@ -134,6 +145,7 @@ struct DomainRaster {
 struct DomainPart {
   int grain = -1;  // index into grains; −1 for the slide, the medium and a raster's opaque domain
   int zone = 0, twin = 0, subgrain = 0;
+  bool vein = false;  // the grain's vein fill (SectionGrain::vein); zone, twin, subgrain then 0
 };
 
 class SectionMap {
@@ -160,6 +172,8 @@ class SectionMap {
   // kMediumDomain there); −1 (and grain −1) elsewhere. min_width_mm > crack_width_mm widens the
   // cracks (a grid coarser than a crack samples every crack it crosses, not a dashed subset).
   int crack_family_at(const glm::dvec2& p_mm, int& grain, double min_width_mm = 0.0) const;
+  // The domain a crack of grain `grain` shows: its vein fill's, or kMediumDomain (an open crack).
+  int crack_domain(int grain) const;
   int domain_count() const { return static_cast<int>(domain_grain_.size()); }
   // Crystal (nullptr for slide and medium), orientation and mineral name of a domain.
   const Crystal* crystal_of_domain(int d) const;

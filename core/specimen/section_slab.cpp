@@ -68,7 +68,7 @@ SlabNode section_slab_node(const SectionMap& m, const glm::dvec2& p_mm, double s
   // Cracks at least a grid step wide: a crack narrower than h would be hit by some nodes and
   // missed by others, a dashed line of pinholes.
   node.crack_family = m.crack_family_at(p_mm, node.crack_grain, 1e-3 * spacing_um);
-  if (node.crack_family >= 0) node.domain = SectionMap::kMediumDomain;
+  if (node.crack_family >= 0) node.domain = m.crack_domain(node.crack_grain);  // open, or a vein
   return node;
 }
 

@@ -376,6 +376,11 @@ nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::
     if (ph.zoning) j["zones"] = zones_json(ph);
     if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
     if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
+    if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
+      // The secondary mineral in a random orientation of its own (it grew in the cracks).
+      const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), static_cast<std::size_t>(grains.size()));
+      j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
+    }
     grains.push_back(std::move(j));
   }
   if (!r.matrix_mineral.empty()) grains.push_back({{"mineral", r.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}});

@@ -23,7 +23,7 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
 }
 
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "alteration", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -84,6 +84,14 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     ur.subgrain_mm = u->require<double>("subgrain_mm", Range::above(0));
     ur.step_deg = u->require<double>("step_deg", Range::open_closed(0, 15));
     p.undulose = ur;
+  }
+  if (const auto a = pr.optional_object("alteration")) {
+    AlterationRecipe ar;
+    ar.mineral = a->require<std::string>("mineral");
+    known_mineral(*a, "mineral", ar.mineral);
+    ar.vein_mm = a->require<double>("vein_mm", Range::open_closed(0, 1));
+    ar.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
+    p.alteration = ar;
   }
   return p;
 }

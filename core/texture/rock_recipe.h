@@ -18,6 +18,8 @@
 //                "fabric": {"align": "elongation|plate_normal", "direction": [1, 0, 0],
 //                           "spread_deg": 15},  (optional: a shape-preferred orientation)
 //                "undulose": {"subgrain_mm": 0.05, "step_deg": 1.5},  (optional: bent, polygonized)
+//                "alteration": {"mineral": "antigorite", "vein_mm": 0.02, "fraction": 1},
+//                                            (optional: the cracks filled with a secondary mineral)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -67,6 +69,14 @@ struct UnduloseRecipe {
   double step_deg = 1.5;
 };
 
+// Alteration along the cracks: a fraction of the phase's crystals have their cracks filled with a
+// secondary mineral in veins vein_mm wide (serpentine along olivine's fractures; section_map.h).
+struct AlterationRecipe {
+  std::string mineral;
+  double vein_mm = 0.02;
+  double fraction = 1.0;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -80,6 +90,7 @@ struct PhaseRecipe {
   std::optional<TwinRecipe> twin;
   std::optional<FabricRecipe> fabric;
   std::optional<UnduloseRecipe> undulose;
+  std::optional<AlterationRecipe> alteration;
 };
 
 // A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
