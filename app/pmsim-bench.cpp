@@ -1,4 +1,5 @@
 // pmsim-bench --apply-settings [--size N]: only the response's apply-settings timing (a frame's work).
+// pmsim-bench --rocks: only the rock-growth row (every recipe grown at 20 × 15 mm, time and memory).
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
 //             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR] [--from-json FILE]
 // Renders the bench scenes with every strategy, measures wall time and per-pixel CIEDE2000
@@ -15,6 +16,7 @@
 #include "core/bench/bench_run.h"
 #include "core/bench/frontier_plot.h"
 #include "core/bench/response_bench.h"
+#include "core/bench/rock_growth_bench.h"
 #include "core/io/atomic_file.h"
 #include "core/base/input_error.h"
 #include "core/base/install_layout.h"
@@ -54,7 +56,7 @@ int main(int argc, char** argv) {
   pmsim::BenchOptions opt;
   opt.cache_dir = default_cache_dir();
   std::string json_path, out_dir, from_json, size, threads;
-  bool no_throughput = false, apply_settings = false;
+  bool no_throughput = false, apply_settings = false, rocks = false;
   CLI::App app{
       "Renders the bench scenes with every strategy and measures time and CIEDE2000 against "
       "converged references.",
@@ -74,6 +76,9 @@ int main(int argc, char** argv) {
   app.add_flag("--apply-settings", apply_settings,
                "only time applying the settings to a --size² Disc response of the granite (stage 30°, and "
                "with the gypsum plate; median of 15 frames each)");
+  app.add_flag("--rocks", rocks,
+               "only time growing every rock recipe of assets/rocks at 20 × 15 mm and reading it as a "
+               "section (issue 22's target: ≤ 2 s and ≤ 1 GB each)");
   app.add_option("--scene", opt.scene_filter, "only the scenes whose name contains it")->type_name("SUBSTR");
   app.add_option("--strategy", opt.strategy_filter, "only the strategies whose name contains it")
       ->type_name("SUBSTR");
@@ -98,6 +103,10 @@ int main(int argc, char** argv) {
     pmsim::cli::usage_error(kProgram, e.what());
   }
   try {
+    if (rocks) {
+      std::cout << pmsim::rock_growth_table(pmsim::measure_rock_growth(20.0, 15.0));
+      return 0;
+    }
     if (apply_settings) {
       std::cout << pmsim::response_apply_note(opt.size > 0 ? opt.size : 512, 15, std::cerr) << "\n";
       return 0;

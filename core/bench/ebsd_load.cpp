@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/bench/process_memory.h"
 #include "core/bench/scratch_dir.h"
 #include "core/ebsd/map_writer.h"
 #include "core/ebsd/read_orientation_map.h"
@@ -15,22 +16,6 @@
 namespace pmsim {
 
 namespace {
-
-long status_kb(const char* key) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  const std::string k = std::string(key) + ":";
-  while (std::getline(f, line))
-    if (line.rfind(k, 0) == 0) return std::stol(line.substr(k.size()));
-  return -1;
-}
-
-// Resets the process's peak RSS to the current one (Linux ≥ 4.0: "5" to clear_refs), so that
-// VmHWM afterwards is the peak of what follows.
-void reset_peak_rss() {
-  std::ofstream f("/proc/self/clear_refs");
-  f << "5";
-}
 
 // A made-up granulite: grains of ~30 points across on a grid, three phases, one point in 23
 // non-indexed, angles varying within each grain as a real map's do.
@@ -68,12 +53,12 @@ EbsdLoadResult time_load(const std::string& path, const char* format) {
   EbsdLoadResult res;
   res.format = format;
   res.file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
-  res.rss_before_kb = status_kb("VmRSS");
+  res.rss_before_kb = process_status_kb("VmRSS");
   reset_peak_rss();
   const auto t0 = std::chrono::steady_clock::now();
   const OrientationMap m = read_orientation_map(path);
   res.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  res.peak_rss_kb = status_kb("VmHWM");
+  res.peak_rss_kb = process_status_kb("VmHWM");
   res.points = m.size();
   res.points_per_s = res.load_s > 0 ? static_cast<double>(m.size()) / res.load_s : 0.0;
   res.map_mb = static_cast<double>(m.phase.size() + 4 * (m.phi1_rad.size() + m.Phi_rad.size() +
