@@ -38,7 +38,7 @@ const Program kPrograms[] = {
       "--optical-path-mm", "--depth", "--tir", "--ledge"}},
     {"pmsim-bench",
      {"--quick", "--json", "--out-dir", "--size", "--threads", "--cache-dir", "--no-throughput", "--scene",
-      "--strategy", "--images", "--from-json", "--apply-settings"}},
+      "--strategy", "--images", "--from-json", "--apply-settings", "--rocks"}},
     {"pmsim-experiments", {"--out-dir", "--quick", "fig3", "fig4", "brewster", "vignetting", "cone-table"}},
     {"pmsim-exercise", {"make", "grade", "list"}},
 };
