@@ -28,6 +28,16 @@ RockRecipe small_andesite() {
   return r;
 }
 
+// Reading `j` fails with an InputError whose message names `name` (file, key and value).
+void expect_error_naming(const nlohmann::json& j, const std::string& name) {
+  try {
+    (void)section_from_json(j, "bad.json");
+    ADD_FAILURE() << "no error for " << name;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+  }
+}
+
 // Every point's grain is the crystal the engine's tiling gives it (or the glass), and every grain
 // of the file owns some of the section: the file holds the grown rock, not an approximation.
 TEST(GrownSection, DomainsAreTheEnginesTiling) {
@@ -96,12 +106,7 @@ TEST(GrownSection, MalformedGrowthIsNamed) {
   nlohmann::json j = {{"size_mm", {1.0, 1.0}},
                       {"grains", {{{"mineral", "augite"}, {"centre_mm", {0.0, 0.0}}, {"size_mm", 0.5},
                                    {"euler_deg", {0, 0, 0}}, {"growth", {{"from", 0.5}, {"to", 0.2}}}}}}};
-  try {
-    (void)section_from_json(j, "bad.json");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("growth.to"), std::string::npos) << e.what();
-  }
+  expect_error_naming(j, "growth.to");
   j["grains"][0]["growth"]["to"] = 1.0;
   j["grains"].push_back({{"mineral", "quartz"}, {"centre_mm", {0.3, 0.0}}, {"size_mm", 0.5}, {"euler_deg", {0, 0, 0}}});
   EXPECT_THROW((void)section_from_json(j, "mixed.json"), InputError);  // grown and ellipse grains
@@ -140,12 +145,7 @@ TEST(GrownSection, SubgrainBandsTurnTheExtinctionByTheirStep) {
   const auto error_names = [&](const char* key, const nlohmann::json& value, const std::string& name) {
     nlohmann::json bad = j;
     bad["grains"][0]["subgrains"][key] = value;
-    try {
-      (void)section_from_json(bad, "bad.json");
-      ADD_FAILURE() << key;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
-    }
+    expect_error_naming(bad, name);
   };
   error_names("step_deg", 20.0, "subgrains.step_deg");
   error_names("width_mm", -0.1, "subgrains.width_mm");
@@ -245,12 +245,7 @@ TEST(GrownSection, PeridotiteOlivineIsSerpentinisedAlongItsFractures) {
                       {"grains", {{{"mineral", "olivine"}, {"centre_mm", {0.0, 0.0}}, {"size_mm", 0.5},
                                    {"euler_deg", {0, 90, 0}},
                                    {"alteration", {{"mineral", "antigorite"}, {"vein_mm", -0.02}, {"euler_deg", {0, 0, 0}}}}}}}};
-  try {
-    (void)section_from_json(j, "bad.json");
-    ADD_FAILURE();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("alteration.vein_mm"), std::string::npos) << e.what();
-  }
+  expect_error_naming(j, "alteration.vein_mm");
   j["grains"][0]["alteration"]["vein_mm"] = 0.02;
   j["grains"][0]["alteration"]["mineral"] = "unobtainium";
   EXPECT_THROW((void)section_from_json(j, "bad.json"), InputError);

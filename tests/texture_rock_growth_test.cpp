@@ -114,8 +114,9 @@ TEST(GrownTiling, ALoneCrystalOwnsTheSectionOfItsPolyhedron) {
     }
 }
 
-RockRecipe small_andesite(double side_mm) {
-  RockRecipe r = read_rock_recipe(rock_recipe_path("andesite"));
+// A shipped recipe on a square section side_mm wide (the tests' small, quick sections).
+RockRecipe small_rock(const std::string& name, double side_mm) {
+  RockRecipe r = read_rock_recipe(rock_recipe_path(name));
   r.width_mm = r.height_mm = side_mm;
   return r;
 }
@@ -125,7 +126,7 @@ RockRecipe small_andesite(double side_mm) {
 // phenocrysts in 9 mm² make it several per cent); 2σ leaves room for the last round's step when
 // six rounds did not settle every phase.
 TEST(RockGrowth, ModesMatchTheRecipeWithinSamplingError) {
-  const RockRecipe r = small_andesite(3.0);
+  const RockRecipe r = small_rock("andesite", 3.0);
   const RockGrowth g = grow_rock(r, 11);
   ASSERT_EQ(g.area_fraction.size(), r.phases.size() + 1);
   for (std::size_t k = 0; k < r.phases.size(); ++k)
@@ -140,7 +141,7 @@ TEST(RockGrowth, ModesMatchTheRecipeWithinSamplingError) {
 // crystals) must give the recipe's slope. Tolerance 15 %: the fit over 8 bins of ~10³ crystals
 // each has a statistical error of a few per cent.
 TEST(RockGrowth, CrystalSizesFollowTheRecipesLogLinearCsd) {
-  const RockRecipe r = small_andesite(3.0);
+  const RockRecipe r = small_rock("andesite", 3.0);
   const RockGrowth g = grow_rock(r, 3);
   const std::size_t k = 4;  // plagioclase microlites
   ASSERT_EQ(r.phases[k].name, "plagioclase microlites");
@@ -206,19 +207,13 @@ std::vector<GrainShape> grain_shapes(const RockRecipe& r, const RockGrowth& g, i
 // Plagioclase microlites are laths in section: median 2-D aspect ≥ 3 (issue 22's test for a
 // volcanic groundmass; the old ellipse basalt measured 1.85), on a 1 µm raster of a 1 mm square.
 TEST(RockGrowth, PlagioclaseMicrolitesAreLaths) {
-  const RockRecipe r = small_andesite(3.0);
+  const RockRecipe r = small_rock("andesite", 3.0);
   const RockGrowth g = grow_rock(r, 1);
   std::vector<double> aspect;
   for (const GrainShape& s : grain_shapes(r, g, 4, 1.0, 1000)) aspect.push_back(s.aspect);
   ASSERT_GT(aspect.size(), 300u);
   std::nth_element(aspect.begin(), aspect.begin() + aspect.size() / 2, aspect.end());
   EXPECT_GE(aspect[aspect.size() / 2], 3.0);
-}
-
-RockRecipe small_amphibolite(double side_mm) {
-  RockRecipe r = read_rock_recipe(rock_recipe_path("amphibolite"));
-  r.width_mm = r.height_mm = side_mm;
-  return r;
 }
 
 // Foliation strength: a lineation along x (σ = 15°) lines up the hornblende prisms. In 3-D the
@@ -231,7 +226,7 @@ RockRecipe small_amphibolite(double side_mm) {
 // rock grown without the fabric gives R ≤ 3/√N (a random set's resultant has mean ~0.9/√N and
 // standard deviation ~0.5/√N: 3/√N is ~4 standard deviations over its mean; 0.18 for ~270 grains).
 TEST(RockGrowth, AmphiboliteHornblendeIsLineatedAlongTheFabric) {
-  const RockRecipe r = small_amphibolite(4.0);
+  const RockRecipe r = small_rock("amphibolite", 4.0);
   ASSERT_TRUE(r.phases[0].fabric.has_value());
   const RockGrowth g = grow_rock(r, 5);
   const MineralCrystallography* mc = find_mineral_crystallography("hornblende");
@@ -331,8 +326,7 @@ double median_deviation_from_120_deg(const std::vector<double>& angles) {
 }
 
 RockRecipe small_quartzite(double side_mm, int iterations) {
-  RockRecipe r = read_rock_recipe(rock_recipe_path("quartzite"));
-  r.width_mm = r.height_mm = side_mm;
+  RockRecipe r = small_rock("quartzite", side_mm);
   r.granoblastic->relax_iterations = iterations;
   return r;
 }
@@ -369,8 +363,7 @@ TEST(RockGrowth, GranoblasticJunctionsRelaxTowardOneHundredTwentyDegrees) {
 // A granoblastic rock's modes: phases go to nearly equal cells by quota, so the section's area
 // fractions are within sampling error of the recipe; every grain is a sphere-grown cell ("shape").
 TEST(RockGrowth, GranoblasticModesAndSectionFile) {
-  RockRecipe r = read_rock_recipe(rock_recipe_path("marble"));
-  r.width_mm = r.height_mm = 4.0;
+  const RockRecipe r = small_rock("marble", 4.0);
   const RockGrowth g = grow_rock(r, 2);
   for (std::size_t k = 0; k < r.phases.size(); ++k)
     EXPECT_NEAR(g.area_fraction[k], r.phases[k].mode_percent / 100, std::max(kModeTolerance, 2 * g.sampling_error[k]) + 1e-12)
@@ -386,7 +379,7 @@ TEST(RockGrowth, GranoblasticModesAndSectionFile) {
 
 // Another seed grows another specimen: no crystal in the same place, the same modes.
 TEST(RockGrowth, ASecondSeedDiffersInEveryGrainAndKeepsTheModes) {
-  const RockRecipe r = small_andesite(3.0);
+  const RockRecipe r = small_rock("andesite", 3.0);
   const RockGrowth a = grow_rock(r, 1), b = grow_rock(r, 2);
   std::map<std::pair<long, long>, int> at;
   for (const GrownCrystal& c : a.crystals) at[{std::lround(c.nucleus_mm.x * 1e6), std::lround(c.nucleus_mm.y * 1e6)}]++;
@@ -418,8 +411,7 @@ namespace {
 // 15 % of their radii's sum, to 0.005 (the 300 Jacobi steps end at 0.1513 on this 4 mm square,
 // 0.1504 on the full 8 × 6 mm).
 TEST(RockGrowth, SandstoneGrainsArePackedRoundedBallsWithPores) {
-  RockRecipe r = read_rock_recipe(rock_recipe_path("sandstone"));
-  r.width_mm = r.height_mm = 4.0;
+  const RockRecipe r = small_rock("sandstone", 4.0);
   const RockGrowth g = grow_rock(r, 1);
   double framework = 0.0;
   for (std::size_t k = 0; k < r.phases.size(); ++k) {
