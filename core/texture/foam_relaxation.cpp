@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/base/splitmix64.h"
 
@@ -84,19 +88,28 @@ std::vector<glm::dvec3> relaxed_foam_nuclei(const FoamBox& box, std::size_t coun
   for (int a = 0; a < 3; ++a) n[a] = std::max(1, static_cast<int>(std::floor(extent[a] / h)));
   std::vector<glm::dvec3> sum(count);
   std::vector<std::size_t> hits(count);
+  std::vector<std::uint32_t> owner(std::size_t(n[0]) * n[1] * n[2]);
   for (int it = 0; it < iterations; ++it) {
     const NucleusGrid grid(box, spacing, nuclei);
     std::fill(sum.begin(), sum.end(), glm::dvec3(0.0));
     std::fill(hits.begin(), hits.end(), 0);
-    // A fresh sub-cell shift each step, so the grid leaves no pattern in the centroids.
+    // A fresh sub-cell shift each step, so the grid leaves no pattern in the centroids. The
+    // nearest-nucleus searches run in parallel into `owner`; the sums then run in one fixed order,
+    // so the result does not depend on the thread count.
     glm::dvec3 step, offset;
     for (int a = 0; a < 3; ++a) step[a] = extent[a] / n[a], offset[a] = uniform() * step[a];
+    const auto point = [&](int i, int j, int k) { return box.lo + offset + glm::dvec3(i, j, k) * step; };
+    tbb::parallel_for(tbb::blocked_range<int>(0, n[2]), [&](const tbb::blocked_range<int>& ks) {
+      for (int k = ks.begin(); k < ks.end(); ++k)
+        for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
+            owner[(std::size_t(k) * n[1] + j) * n[0] + i] = static_cast<std::uint32_t>(grid.nearest(point(i, j, k)));
+    });
     for (int k = 0; k < n[2]; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i) {
-          const glm::dvec3 p = box.lo + offset + glm::dvec3(i, j, k) * step;
-          const std::size_t o = grid.nearest(p);
-          sum[o] += p;
+          const std::uint32_t o = owner[(std::size_t(k) * n[1] + j) * n[0] + i];
+          sum[o] += point(i, j, k);
           ++hits[o];
         }
     for (std::size_t c = 0; c < count; ++c)
