@@ -341,9 +341,9 @@ GrownTiling foam_tiling(const RockRecipe& r, const RockGrowth& g) {
 // angles must lie nearer 120° than a Poisson–Voronoi aggregate's (the same recipe with no
 // relaxation). Even a perfect 3-D foam shows a spread of apparent angles in a random section (a
 // junction line cut obliquely), so the measure is the median of |angle − 120°|. Measured on this
-// 4 mm square, seeds 3–5: Poisson–Voronoi 21.0–22.0°, relaxed 12.75–13.25° (RMS 30–32° and
-// 22.5–23.3°) over ~500 junctions each; asserted: relaxed ≤ 0.75 × Poisson–Voronoi (measured
-// 0.58–0.62; a median of ~1500 angles moves by ~3 %), and the mean 120° ± 1° (the three angles of a
+// 4 mm square, seeds 3–5: Poisson–Voronoi 21.0–22.0°, relaxed 13.0° over ~500 junctions each;
+// asserted: relaxed ≤ 0.75 × Poisson–Voronoi (measured 0.59–0.62; a median of ~1500 angles moves
+// by ~3 %), and the mean 120° ± 1° (the three angles of a
 // junction sum to 360°; the mean is off 120° only by junctions dropped unevenly).
 TEST(RockGrowth, GranoblasticJunctionsRelaxTowardOneHundredTwentyDegrees) {
   const RockRecipe relaxed = small_quartzite(4.0, 12), poisson = small_quartzite(4.0, 0);
