@@ -235,6 +235,13 @@ TEST(GrownSection, PeridotiteOlivineIsSerpentinisedAlongItsFractures) {
       EXPECT_TRUE(m.domain_part(d).vein);
       EXPECT_EQ(m.crystal_of_domain(d), g.vein->crystal);
     }
+  for (std::size_t k = 0; k < m.grains.size(); ++k) {  // --grains names the vein mineral
+    const GrainReport report = report_grain(Scene{}, m, static_cast<int>(k) + 1);
+    ASSERT_EQ(report.alteration.has_value(), m.grains[k].vein.has_value());
+    if (report.alteration) {
+      EXPECT_EQ(report.alteration->mineral, "antigorite");
+    }
+  }
   ASSERT_GT(veined_grains, 5);
   const double share = double(serpentine) / olivine;
   std::cout << "peridotite: serpentine " << share << " of the olivine area, " << veined_grains << " veined grains\n";

@@ -25,6 +25,7 @@ json grain_report_json(const GrainReport& r) {
             // published optical orientation or a stand-in on the crystal frame (issue 22).
             {"optics", grain_optics_name(r)}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
+  if (r.alteration) j["alteration"] = {{"mineral", r.alteration->mineral}, {"vein_mm", r.alteration->vein_mm}};
   if (r.subgrains)
     j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
                       {"step_deg", r.subgrains->step_deg},

@@ -165,8 +165,10 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     r.sign_of_elongation.reset();
     if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}};
     if (!g.subgrain_rotation.empty()) r.subgrains = GrainSubgrainReport{g.subgrain_mm, g.subgrain_step_deg, std::nullopt};
+    if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
     return r;
   }
+  if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
   if (!g.subgrain_rotation.empty()) r.subgrains = subgrain_report(g);
   if (g.twinned)
     r.twin = GrainTwinReport{

@@ -42,6 +42,12 @@ struct GrainSubgrainReport {
   std::optional<double> extinction_sweep_deg;
 };
 
+// A grain whose cracks are veins of a secondary mineral (SectionGrain::vein: serpentine in olivine).
+struct GrainAlterationReport {
+  std::string mineral;
+  double vein_mm = 0.0;
+};
+
 struct GrainReport {
   int id = 0;           // the grain's label (SectionMap::grain_label)
   std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
@@ -63,6 +69,7 @@ struct GrainReport {
   std::optional<double> slow_vibration_deg;
   std::optional<GrainTwinReport> twin;
   std::optional<GrainSubgrainReport> subgrains;
+  std::optional<GrainAlterationReport> alteration;
   // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
   // and crossed light, so nothing above is observable in transmitted light — the extinction
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left
