@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/base/input_error.h"
@@ -17,8 +18,9 @@ bool lists(const std::vector<Candidate>& c, const std::string& m) {
 }
 }  // namespace
 
-// "Short": at most 3 of the 56 minerals and 1.5 on average. Measured: 3 and 1.34 (1.35 of 54
-// before the opaque magnetite and ilmenite, each alone in its list by its twin law) — the three
+// "Short": at most 3 of the 58 library materials and 1.5 on average. Measured: 3 and 1.33 (1.34 of
+// 56 before glass and blue_epoxy; 1.35 of 54 before the opaque magnetite and ilmenite, each
+// alone in its list by its twin law; blue_epoxy, at the medium's index, shows no relief sign) — the three
 // garnet-like isotropic minerals of high relief (grossular, pyrope, spinel) and the colourless
 // biaxial positive minerals of moderate relief and 2V near 60-70° (clinozoisite, enstatite, jadeite,
 // topaz) are not told apart by these observations, as in a real determinative table; a measured
@@ -35,6 +37,8 @@ TEST(Identify, EveryMineralFindsItselfInAShortList) {
     longest = std::max(longest, c.size());
     total += c.size();
   }
+  std::printf("longest list %zu, mean %.2f over %zu minerals\n", longest, double(total) / double(library_signatures().size()),
+              library_signatures().size());
   EXPECT_LE(longest, 3u);
   EXPECT_LE(double(total) / double(library_signatures().size()), 1.5);
 }

@@ -221,7 +221,9 @@ Observations observations_of(const MineralSignature& s) {
   // What a student reads at the microscope: the relief class (not a measured index), 2V to
   // ±10°, the largest extinction angle seen.
   o.relief = relief_class(0.5 * (s.n_min + s.n_max));
-  o.relief_sign = 0.5 * (s.n_min + s.n_max) > kReliefMediumIndex ? "positive" : "negative";
+  // An index equal to the medium's shows no Becke line to read a sign from (blue_epoxy, n 1.54).
+  if (const double n = 0.5 * (s.n_min + s.n_max); n != kReliefMediumIndex)
+    o.relief_sign = n > kReliefMediumIndex ? "positive" : "negative";
   o.coloured = s.coloured;
   o.pleochroic = s.pleochroic;
   o.max_order = max_interference_order(s.birefringence, 30.0);
