@@ -149,6 +149,7 @@ TEST(GrownSection, SubgrainBandsTurnTheExtinctionByTheirStep) {
   };
   error_names("step_deg", 20.0, "subgrains.step_deg");
   error_names("width_mm", -0.1, "subgrains.width_mm");
+  error_names("width_mm", 1e-300, "subgrains.width_mm");  // too many bands (and no int overflow)
   error_names("wall_normal", nlohmann::json::array({0, 0, 1}), "subgrains.wall_normal");
   error_names("axis", nlohmann::json::array({0, 0, 0}), "subgrains.axis");
 }

@@ -633,8 +633,10 @@ void read_subgrains(const JsonReader& gr, SectionGrain& g) {
   if (!(glm::length(trace_normal) > 1e-6 * glm::length(wall)))
     sg->fail("wall_normal", "walls parallel to the section have no trace in it (a vertical normal)");
   g.subgrain_normal = glm::normalize(trace_normal);
-  const int half = static_cast<int>(std::ceil(2.0 * g.semi_major_mm / g.subgrain_mm - 1e-9));  // 5.0000001 is 5
-  if (half > 200) sg->fail("width_mm", "over 401 subgrains across the grain: wider bands, please");
+  // Counted as a double first: a tiny width would overflow an int (5.0000001 counts as 5).
+  const double bands = std::ceil(2.0 * g.semi_major_mm / g.subgrain_mm - 1e-9);
+  if (!(bands <= 200.0)) sg->fail("width_mm", "over 401 subgrains across the grain: wider bands, please");
+  const int half = static_cast<int>(bands);
   const glm::dvec3 u = glm::normalize(axis);
   for (int k = -half; k <= half; ++k) g.subgrain_rotation.push_back(axis_rotation(u, radians(k * g.subgrain_step_deg)));
 }
