@@ -156,6 +156,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   }
   const std::optional<glm::dvec3> feature = first_cleavage ? first_cleavage : elongation;
   if (feature && !optics.circular) r.extinction_angle_deg = extinction_from(optics, *feature).angle_deg;
+  if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
   if (r.opaque) {
     // Black in every light: no extinction, interference colour or slow direction to observe.
     r.extinction_stage_deg.clear();
@@ -165,10 +166,8 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     r.sign_of_elongation.reset();
     if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}};
     if (!g.subgrain_rotation.empty()) r.subgrains = GrainSubgrainReport{g.subgrain_mm, g.subgrain_step_deg, std::nullopt};
-    if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
     return r;
   }
-  if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
   if (!g.subgrain_rotation.empty()) r.subgrains = subgrain_report(g);
   if (g.twinned)
     r.twin = GrainTwinReport{

@@ -492,7 +492,9 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
   // A "sphere" grain (granoblastic, or a rounded detrital grain) has no habit to show: its
   // ellipse, and so the report's elongation, is the ball's.
   const auto growth_json = gr.optional_object("growth");
-  const bool ball = growth_json && growth_json->get_or<std::string>("shape", "habit") == "sphere";
+  const std::string shape = growth_json ? growth_json->get_or<std::string>("shape", "habit") : "habit";
+  if (shape != "habit" && shape != "sphere") growth_json->fail("shape", "expected \"habit\" or \"sphere\"");
+  const bool ball = shape == "sphere";
   const bool habit = has_lattice && (mc->habit.elongation || mc->habit.tabular) && !ball;
   if (ball && gr.has("aspect")) gr.fail("aspect", "a \"sphere\" grain is a ball: it has no aspect");
   const double aspect = habit ? gr.get_or("aspect", default_habit_aspect(mc), Range::at_least(1)) : 1.0;
@@ -502,10 +504,8 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     growth.from = gw->require<double>("from");
     growth.to = gw->require<double>("to");
     if (!(growth.to > growth.from)) gw->fail("to", "growth must end after it starts (to > from)");
-    // "sphere": a granoblastic grain, whose neighbours alone bound it (crystal_polyhedron.h).
-    const std::string shape = gw->get_or<std::string>("shape", "habit");
-    if (shape != "habit" && shape != "sphere") gw->fail("shape", "expected \"habit\" or \"sphere\"");
-    growth.shape = shape == "sphere" ? sphere_polyhedron(size) : habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
+    // A ball: its neighbours alone bound it (crystal_polyhedron.h).
+    growth.shape = ball ? sphere_polyhedron(size) : habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
     g.growth = growth;
   }
   if (habit) {

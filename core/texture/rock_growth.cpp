@@ -79,6 +79,16 @@ double cut_crystal_size(const CsdRecipe& c, Random& rng) {
   }
 }
 
+// Three independent standard normal deviates (Box–Muller, the cosine branch of each pair).
+glm::dvec3 gaussian3(Random& rng) {
+  glm::dvec3 g;
+  for (int k = 0; k < 3; ++k) {
+    const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
+    g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+  }
+  return g;
+}
+
 // Turns a uniformly drawn orientation so that its fabric axis (crystal frame) lies along the
 // fabric direction perturbed by a Gaussian of spread σ (the smallest rotation taking one to the
 // other): the rotation about the axis stays uniform.
@@ -87,12 +97,7 @@ std::array<double, 3> aligned(const std::array<double, 3>& euler_deg, const Fabr
   const glm::dmat3 L0 = crystal_to_sample_from_bunge({euler_deg[0] * kPi / 180.0, euler_deg[1] * kPi / 180.0,
                                                       euler_deg[2] * kPi / 180.0});
   const double s = f.spread_deg * kPi / 180.0;
-  glm::dvec3 g;
-  for (int k = 0; k < 3; ++k) {  // Box–Muller
-    const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
-    g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-  }
-  glm::dvec3 target = glm::normalize(glm::dvec3(f.direction[0], f.direction[1], f.direction[2]) + s * g);
+  glm::dvec3 target = glm::normalize(glm::dvec3(f.direction[0], f.direction[1], f.direction[2]) + s * gaussian3(rng));
   const glm::dvec3 a = glm::normalize(L0 * axis_crystal);
   if (glm::dot(a, target) < 0.0) target = -target;  // an axis, not a vector
   const glm::dvec3 k = glm::cross(a, target);
@@ -342,18 +347,10 @@ RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
 // containing it (wall normal ⟂ axis, uniform about it). Walls within ~25° of the section plane
 // (|n_z| > 0.9) are drawn again: they would smear across the 30 µm section rather than show as bands.
 nlohmann::json subgrains_json(const UnduloseRecipe& u, Random& rng) {
-  const auto gaussian3 = [&] {
-    glm::dvec3 g;
-    for (int k = 0; k < 3; ++k) {  // Box–Muller
-      const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
-      g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-    }
-    return g;
-  };
-  const glm::dvec3 axis = glm::normalize(gaussian3());
+  const glm::dvec3 axis = glm::normalize(gaussian3(rng));
   glm::dvec3 wall;
   do {
-    const glm::dvec3 v = gaussian3();
+    const glm::dvec3 v = gaussian3(rng);
     wall = glm::normalize(v - glm::dot(v, axis) * axis);
   } while (std::abs(wall.z) > 0.9);
   return {{"width_mm", u.subgrain_mm}, {"step_deg", u.step_deg}, {"axis", {axis.x, axis.y, axis.z}},
