@@ -101,6 +101,30 @@ TEST(GrownTiling, GridOwnerEqualsTheExhaustiveSearch) {
   }
 }
 
+// The grid is built by blocks of 4096 crystals in parallel (grown_tiling.cpp): 10⁴ crystals are
+// three blocks, and the cell lists must still hold each cell's candidates so that the owner is
+// the exhaustive search's, ties to the lowest index, on both sides of every block boundary. With
+// a matrix: without one a cell that no crystal covers at 4× its size lists every crystal (correct,
+// but 10⁸ gauge evaluations here), and the block code is the same.
+TEST(GrownTiling, ParallelBlocksGiveTheExhaustiveOwner) {
+  std::vector<GrainGrowth> crystals = random_crystals(10000, 6.0, 13);
+  for (GrainGrowth& c : crystals) {  // a quarter the size: ~3 crystals a cell of the 6 mm square
+    c.nucleus_mm *= glm::dvec3(1.0, 1.0, 0.25);
+    for (double& h : c.shape.support_mm) h *= 0.25;
+    c.shape.circumradius_mm *= 0.25;
+  }
+  const GrownTiling t(std::move(crystals), true, 6.0, 6.0);
+  std::set<int> blocks;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) {
+      const glm::dvec2 p{(i + 0.29) / 40 * 6.0 - 3.0, (j + 0.71) / 40 * 6.0 - 3.0};
+      const int o = t.owner(p);
+      ASSERT_EQ(o, t.owner_exhaustive(p)) << "at " << p.x << "," << p.y;
+      if (o >= 0) blocks.insert(o / 4096);
+    }
+  EXPECT_EQ(blocks.size(), 3u);  // owners from every block
+}
+
 // An early crystal keeps its free-growth faces where nothing impinged: a lone crystal owns exactly
 // the section of its polyhedron (gauge ≤ 1), so its outline is straight faces.
 TEST(GrownTiling, ALoneCrystalOwnsTheSectionOfItsPolyhedron) {

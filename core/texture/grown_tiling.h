@@ -10,6 +10,7 @@
 //
 // With a matrix (a volcanic rock's glass) crystals stop at `to` and a point no crystal reaches
 // belongs to the matrix; without one the crystals grow on until the rock is full.
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -45,8 +46,10 @@ class GrownTiling {
  private:
   struct NodeWindow;
   double arrival(int i, const glm::dvec2& p) const;
-  NodeWindow window(int i, double s_reach, const glm::dvec2& origin) const;
+  void window(int i, double s_reach, const glm::dvec2& origin, NodeWindow& w) const;
   std::vector<double> cell_upper_bounds(const glm::dvec2& origin) const;
+  void candidate_cells(int i, const glm::dvec2& origin, const std::vector<double>& upper, double u_max, NodeWindow& w,
+                       std::vector<std::pair<int, int>>& out) const;
 
   std::vector<GrainGrowth> crystals_;
   bool capped_ = false;
