@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include "core/microscope/scene.h"
 #include "core/microscope/scene_check.h"
 #include "core/microscope/section_map.h"
+#include "core/microscope/section_reorient.h"
 #include "core/texture/rock_growth.h"
 #include "core/texture/rock_recipe.h"
 
@@ -77,6 +79,36 @@ TEST(GrownSection, DomainsAreTheEnginesTiling) {
   // 4σ of the counting error of 9·10⁴ points). Cracks are counted as neither.
   EXPECT_NEAR(glass / 90000.0, g.area_fraction.back(), 0.01);
   EXPECT_GT(zoned, 0);  // oscillatory-zoned phenocrysts
+}
+
+// Loading a rock parses each grain as it is written (section_from_grown_rock) instead of the whole
+// file: the same section, grain for grain and point for point, with and without an orientation
+// seed (which turns each grain as reorient_section_grains turns the file's).
+TEST(GrownSection, StreamedGrainsAreTheFilesSection) {
+  const RockRecipe r = small_andesite();
+  const RockGrowth g = grow_rock(r, 6);
+  for (const std::optional<std::uint64_t> turn : {std::optional<std::uint64_t>(), std::optional<std::uint64_t>(9)}) {
+    nlohmann::json j = rock_section_json(r, g, 6);
+    if (turn) reorient_section_grains(j, *turn);
+    const SectionMap file = section_from_json(j, "andesite test");
+    const SectionMap streamed = section_from_grown_rock(r, g, 6, turn, "andesite test");
+    ASSERT_EQ(streamed.grains.size(), file.grains.size());
+    EXPECT_EQ(streamed.name, file.name);
+    EXPECT_EQ(streamed.source, file.source);
+    for (std::size_t i = 0; i < file.grains.size(); ++i) {
+      EXPECT_EQ(streamed.grains[i].mineral, file.grains[i].mineral);
+      EXPECT_EQ(streamed.grains[i].zones.size(), file.grains[i].zones.size());
+      EXPECT_EQ(streamed.grains[i].twinned, file.grains[i].twinned);
+    }
+    for (int k = 0; k < 200 * 200; ++k) {
+      const glm::dvec2 p{(k % 200 + 0.5) / 100.0 - 1.0, (k / 200 + 0.5) / 100.0 - 1.0};
+      const int d = file.domain_at(p);
+      ASSERT_EQ(streamed.domain_at(p), d);
+      const glm::dmat3 a = file.orientation_of_domain(d), b = streamed.orientation_of_domain(d);
+      for (int c = 0; c < 3; ++c)
+        for (int e = 0; e < 3; ++e) ASSERT_EQ(a[c][e], b[c][e]);  // the same arithmetic: bit for bit
+    }
+  }
 }
 
 // sample.seed: a scene key for rocks with a recipe; refused with file, key and value on a

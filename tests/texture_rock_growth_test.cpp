@@ -160,6 +160,23 @@ TEST(RockGrowth, ModesMatchTheRecipeWithinSamplingError) {
   EXPECT_LT(g.sampling_error[4], kModeTolerance);
 }
 
+// A section larger than kCalibrationWindowMm2 takes its densities from a centred window first
+// (intensive quantities), then is checked over the whole like any other: each phase within
+// max(kModeTolerance, σ), or 2σ (as above) when the whole's rounds stopped at six.
+TEST(RockGrowth, ALargeSectionIsCalibratedOnAWindowThenChecked) {
+  RockRecipe r = small_rock("sandstone", 3.0);
+  r.width_mm = 9.0;
+  r.height_mm = 7.0;  // 63 mm²
+  const RockGrowth g = grow_rock(r, 7);
+  EXPECT_GT(g.window_rounds, 0);
+  EXPECT_GE(g.rounds, 1);
+  for (std::size_t k = 0; k < r.phases.size(); ++k)
+    EXPECT_NEAR(g.area_fraction[k], r.phases[k].mode_percent / 100, std::max(kModeTolerance, 2 * g.sampling_error[k]) + 1e-12)
+        << r.phases[k].name << " sampling error " << g.sampling_error[k];
+  const RockGrowth shipped = grow_rock(small_rock("sandstone", 3.0), 7);
+  EXPECT_EQ(shipped.window_rounds, 0);  // 9 mm²: no window
+}
+
 // Marsh's CSD: the crystals the plane cuts are drawn length-biased from n(L) ∝ exp(slope·L), so
 // weighting each by 1/L recovers n(L); its log-linear fit over the microlites (thousands of
 // crystals) must give the recipe's slope. Tolerance 15 %: the fit over 8 bins of ~10³ crystals

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <tuple>
 
@@ -480,7 +481,21 @@ void read_legacy_grain(const JsonReader& gr, SectionGrain& g) {
   }
 }
 
-void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
+// Habit templates by mineral and aspect, for one file: a grown rock places a few templates on up to
+// 10⁵–10⁶ grains, and a template's circumradius (every triple of its faces) costs ~10 µs.
+class HabitTemplates {
+ public:
+  const CrystalPolyhedron& get(const MineralCrystallography* mc, double aspect) {
+    auto [it, fresh] = templates_.try_emplace({mc, aspect});
+    if (fresh) it->second = habit_template(mc, aspect);
+    return it->second;
+  }
+
+ private:
+  std::map<std::pair<const MineralCrystallography*, double>, CrystalPolyhedron> templates_;
+};
+
+void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, HabitTemplates& templates) {
   const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
   const bool has_lattice = g.lattice_to_section.has_value() && mc;
   const glm::dmat3 L = has_lattice ? *g.lattice_to_section : glm::dmat3(1.0);
@@ -505,7 +520,7 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um) {
     growth.to = gw->require<double>("to");
     if (!(growth.to > growth.from)) gw->fail("to", "growth must end after it starts (to > from)");
     // A ball: its neighbours alone bound it (crystal_polyhedron.h).
-    growth.shape = ball ? sphere_polyhedron(size) : habit_polyhedron(has_lattice ? mc : nullptr, L, size, aspect);
+    growth.shape = ball ? sphere_polyhedron(size) : placed(templates.get(has_lattice ? mc : nullptr, aspect), L, size);
     g.growth = growth;
   }
   if (habit) {
@@ -682,9 +697,8 @@ void check_grown(const JsonReader& r, const SectionMap& m) {
   if (matrices > 0 && grown == 0) r.fail("grains", "a matrix grain needs grown crystals (\"growth\") around it");
 }
 
-SectionMap parse_section(const json& j, const std::string& path) {
-  if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
-  const JsonReader r(j, path);
+// The file's keys other than "grains".
+SectionMap section_header(const JsonReader& r, const std::string& path) {
   SectionMap m;
   m.path = path;
   m.name = r.get_or<std::string>("name", path);
@@ -696,42 +710,79 @@ SectionMap parse_section(const json& j, const std::string& path) {
     m.width_mm = s[0];
     m.height_mm = s[1];
   }
-  for (const JsonReader& gr : r.objects("grains", 1)) {
-    SectionGrain g;
-    g.mineral = gr.require<std::string>("mineral");
-    g.crystal = &known_mineral(gr, "mineral", g.mineral);
-    const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
-    try {
-      if (gr.has("euler_deg")) {
-        const auto e = numbers(gr, "euler_deg", 3);
-        const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
-        if (mc) g.lattice_to_section = L;
-        g.orientation = indicatrix_in_section(mc, L);
-        g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
-      } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
-        const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
-        g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
-        // The file's X and Z are as arbitrary against the grain's drawn shape as the stand-in
-        // against its lattice when the library has no orientation of the mineral to check them by.
-        g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
-      } else {
-        const auto a = numbers(gr, "optic_axis", 3);
-        g.orientation = uniaxial_orientation({a[0], a[1], a[2]});  // the whole uniaxial orientation: no stand-in
-      }
-    } catch (const std::invalid_argument& e) {
-      throw InputError(path, gr.prefix(), gr.node().dump(), e.what());
+  return m;
+}
+
+// One grain object, appended to m.grains.
+void read_section_grain(const JsonReader& gr, SectionMap& m, HabitTemplates& templates) {
+  SectionGrain g;
+  g.mineral = gr.require<std::string>("mineral");
+  g.crystal = &known_mineral(gr, "mineral", g.mineral);
+  const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
+  try {
+    if (gr.has("euler_deg")) {
+      const auto e = numbers(gr, "euler_deg", 3);
+      const glm::dmat3 L = crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])});
+      if (mc) g.lattice_to_section = L;
+      g.orientation = indicatrix_in_section(mc, L);
+      g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
+    } else if (g.crystal->symmetry() == CrystalSymmetry::Biaxial) {
+      const auto x = numbers(gr, "x_axis", 3), z = numbers(gr, "z_axis", 3);
+      g.orientation = biaxial_orientation({x[0], x[1], x[2]}, {z[0], z[1], z[2]});
+      // The file's X and Z are as arbitrary against the grain's drawn shape as the stand-in
+      // against its lattice when the library has no orientation of the mineral to check them by.
+      g.optics_stand_in = optical_orientation_is_stand_in(mc, *g.crystal);
+    } else {
+      const auto a = numbers(gr, "optic_axis", 3);
+      g.orientation = uniaxial_orientation({a[0], a[1], a[2]});  // the whole uniaxial orientation: no stand-in
     }
-    if (gr.has("seed"))
-      read_legacy_grain(gr, g);
-    else if (gr.get_or("matrix", false))
-      read_matrix_grain(gr, g, m);
-    else
-      read_grain(gr, g, m.thickness_um);
-    if (!g.matrix) read_subgrains(gr, g);
-    if (!g.matrix) read_vein(gr, g);
-    if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
-    m.grains.push_back(std::move(g));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(gr.file(), gr.prefix(), gr.node().dump(), e.what());
   }
+  if (gr.has("seed"))
+    read_legacy_grain(gr, g);
+  else if (gr.get_or("matrix", false))
+    read_matrix_grain(gr, g, m);
+  else
+    read_grain(gr, g, m.thickness_um, templates);
+  if (!g.matrix) read_subgrains(gr, g);
+  if (!g.matrix) read_vein(gr, g);
+  if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
+  m.grains.push_back(std::move(g));
+}
+
+SectionMap parse_section(const json& j, const std::string& path) {
+  if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
+  const JsonReader r(j, path);
+  SectionMap m = section_header(r, path);
+  HabitTemplates templates;
+  for (const JsonReader& gr : r.objects("grains", 1)) read_section_grain(gr, m, templates);
+  check_grown(r, m);
+  m.finish();
+  return m;
+}
+
+// A grown rock's section, each grain parsed as its JSON is written (rock_growth.h): the same map
+// as section_from_json(rock_section_json(…)) without the whole file in memory at once.
+SectionMap parse_grown_rock(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed,
+                            std::optional<std::uint64_t> orientation_seed, const std::string& path) {
+  const json header = rock_section_header_json(recipe, seed);
+  const JsonReader r(header, path);
+  SectionMap m = section_header(r, path);
+  HabitTemplates templates;
+  std::uint64_t index = 0;
+  for_each_rock_grain_json(recipe, growth, seed, [&](const json& grain) {
+    const std::string prefix = "grains[" + std::to_string(index) + "]";
+    if (!orientation_seed) {
+      read_section_grain(JsonReader(grain, path, prefix), m, templates);
+    } else {
+      json turned = grain;
+      reorient_section_grain(turned, *orientation_seed, index);
+      read_section_grain(JsonReader(turned, path, prefix), m, templates);
+    }
+    ++index;
+  });
+  if (m.grains.empty()) throw InputError(path, "grains", "[]", "expected an array of at least 1 objects");
   check_grown(r, m);
   m.finish();
   return m;
@@ -749,6 +800,15 @@ SectionMap section_from_json(const nlohmann::json& j, const std::string& origin)
   }
 }
 
+SectionMap section_from_grown_rock(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed,
+                                   std::optional<std::uint64_t> orientation_seed, const std::string& origin) {
+  try {
+    return parse_grown_rock(recipe, growth, seed, orientation_seed, origin);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(origin, "", "", std::string("bad thin-section file: ") + e.what());
+  }
+}
+
 std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, std::optional<int> orientation_seed,
                                                std::optional<int> seed) {
   if (const std::string rock = rock_recipe_path(name_or_path); !rock.empty()) {
@@ -756,9 +816,9 @@ std::shared_ptr<const SectionMap> load_section(const std::string& name_or_path, 
     return rocks.get(std::tuple{rock, orientation_seed, seed}, [&] {
       const RockRecipe recipe = read_rock_recipe(rock);
       const std::uint64_t s = seed ? static_cast<std::uint64_t>(*seed) : recipe.seed;
-      nlohmann::json j = rock_section_json(recipe, grow_rock(recipe, s), s);
-      if (orientation_seed) reorient_section_grains(j, std::uint64_t(*orientation_seed));
-      return std::make_shared<const SectionMap>(section_from_json(j, rock));
+      std::optional<std::uint64_t> turn;
+      if (orientation_seed) turn = static_cast<std::uint64_t>(*orientation_seed);
+      return std::make_shared<const SectionMap>(section_from_grown_rock(recipe, grow_rock(recipe, s), s, turn, rock));
     });
   }
   if (seed) throw InputError("", "sample.seed", std::to_string(*seed), "'" + name_or_path + "' is not a rock with a recipe in assets/rocks");

@@ -23,6 +23,7 @@
 
 #include "core/crystal/crystal.h"
 #include "core/texture/grown_tiling.h"
+#include "core/texture/rock_growth.h"
 
 namespace pmsim {
 
@@ -218,6 +219,12 @@ class SectionMap {
 // Builds a section from a parsed file (`origin` names it in messages); throws InputError naming
 // file, key and value on bad content, an unknown mineral or an unknown twin law.
 SectionMap section_from_json(const nlohmann::json& j, const std::string& origin);
+
+// The section of a grown rock (core/texture/rock_growth.h), optionally with its grains turned
+// (orientation seed, section_reorient.h): equal to section_from_json of rock_section_json, each
+// grain parsed as it is written instead of the whole file held as one JSON value.
+SectionMap section_from_grown_rock(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed,
+                                   std::optional<std::uint64_t> orientation_seed, const std::string& origin);
 
 // Loads (once, cached by resolved path and seed) a section file; with an orientation seed its
 // grains are given new orientations first (sample.orientation_seed, section_reorient.h).

@@ -15,5 +15,7 @@ namespace pmsim {
 // Rewrites a parsed section file's grains in place: euler_deg from uniform_euler_deg(seed, index),
 // the legacy orientation keys (optic_axis, x_axis, z_axis, elongation_deg) removed.
 void reorient_section_grains(nlohmann::json& section, std::uint64_t seed);
+// The same for one grain object, the index-th of its file (counting only objects).
+void reorient_section_grain(nlohmann::json& grain, std::uint64_t seed, std::uint64_t index);
 
 }  // namespace pmsim

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 
 #include "core/base/splitmix64.h"
 #include "core/crystal/crystal_polyhedron.h"
@@ -194,15 +196,18 @@ GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crys
   return GrownTiling(std::move(g), !r.matrix_mineral.empty(), r.width_mm, r.height_mm);
 }
 
-// Owner counts on an nx × ny raster of point centres; the last entry counts the matrix.
+// Owner counts on an nx × ny raster of point centres; the last entry counts the matrix. Rows are
+// looked up in parallel into a raster of owners, then counted in order.
 std::vector<std::size_t> owner_counts(const RockRecipe& r, const GrownTiling& t, int nx, int ny) {
-  std::vector<std::size_t> n(t.crystals().size() + 1, 0);
-  for (int j = 0; j < ny; ++j)
+  std::vector<int> owners(static_cast<std::size_t>(nx) * ny);
+  tbb::parallel_for(0, ny, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       const glm::dvec2 p{((i + 0.5) / nx - 0.5) * r.width_mm, ((j + 0.5) / ny - 0.5) * r.height_mm};
-      const int o = t.owner(p);
-      ++n[o < 0 ? t.crystals().size() : static_cast<std::size_t>(o)];
+      owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
     }
+  });
+  std::vector<std::size_t> n(t.crystals().size() + 1, 0);
+  for (const int o : owners) ++n[o < 0 ? t.crystals().size() : static_cast<std::size_t>(o)];
   return n;
 }
 
@@ -301,6 +306,41 @@ RockGrowth grow_foam(const RockRecipe& r, std::uint64_t seed) {
   return out;
 }
 
+// Draws, packs, tiles and measures the phases, scaling each density by target / measured area
+// fraction until every phase is within kModeTolerance or its sampling error (at most 6 rounds);
+// the last round's crystals and their tiling.
+struct DrawnRock {
+  std::vector<GrownCrystal> crystals;
+  GrownTiling tiling;
+};
+
+DrawnRock calibrate(const RockRecipe& r, const std::vector<PhaseModel>& models, std::uint64_t seed, RockGrowth& out) {
+  // The measuring raster: ~250 points across the longer side (6·10⁴ points: a fraction's
+  // counting error is then far below kModeTolerance; the section's own sampling error is not).
+  const int nx = static_cast<int>(std::ceil(250.0 * r.width_mm / std::max(r.width_mm, r.height_mm)));
+  const int ny = static_cast<int>(std::ceil(250.0 * r.height_mm / std::max(r.width_mm, r.height_mm)));
+  DrawnRock d;
+  for (out.rounds = 1;; ++out.rounds) {
+    d.crystals.clear();
+    for (std::size_t k = 0; k < r.phases.size(); ++k) {
+      auto c = sample_phase(r, static_cast<int>(k), models[k], out.density_per_mm3[k], seed);
+      d.crystals.insert(d.crystals.end(), c.begin(), c.end());
+    }
+    pack_rounded(r, d.crystals);
+    d.tiling = tiling_of(r, d.crystals, models);
+    measure_phases(r, d.crystals, owner_counts(r, d.tiling, nx, ny), out);
+    bool done = true;
+    for (std::size_t k = 0; k < r.phases.size(); ++k)
+      done = done && std::abs(out.area_fraction[k] - r.phases[k].mode_percent / 100.0) <=
+                         std::max(kModeTolerance, out.sampling_error[k]);
+    if (done || out.rounds == 6) return d;
+    for (std::size_t k = 0; k < r.phases.size(); ++k) {
+      const double ratio = r.phases[k].mode_percent / 100.0 / std::max(out.area_fraction[k], 1e-4);
+      out.density_per_mm3[k] *= std::clamp(ratio, 0.3, 3.0);
+    }
+  }
+}
+
 }  // namespace
 
 RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
@@ -311,35 +351,23 @@ RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
     models.push_back(phase_model(ph));
     out.density_per_mm3.push_back(ph.mode_percent / 100.0 / (models.back().volume_per_size3 * models.back().mean_size3));
   }
-  // The measuring raster: ~250 points across the longer side (6·10⁴ points: a fraction's
-  // counting error is then far below kModeTolerance; the section's own sampling error is not).
-  const int nx = static_cast<int>(std::ceil(250.0 * r.width_mm / std::max(r.width_mm, r.height_mm)));
-  const int ny = static_cast<int>(std::ceil(250.0 * r.height_mm / std::max(r.width_mm, r.height_mm)));
-  std::vector<GrownCrystal> crystals;
-  for (out.rounds = 1;; ++out.rounds) {
-    crystals.clear();
-    for (std::size_t k = 0; k < r.phases.size(); ++k) {
-      auto c = sample_phase(r, static_cast<int>(k), models[k], out.density_per_mm3[k], seed);
-      crystals.insert(crystals.end(), c.begin(), c.end());
-    }
-    pack_rounded(r, crystals);
-    const GrownTiling t = tiling_of(r, crystals, models);
-    measure_phases(r, crystals, owner_counts(r, t, nx, ny), out);
-    bool done = true;
-    for (std::size_t k = 0; k < r.phases.size(); ++k)
-      done = done && std::abs(out.area_fraction[k] - r.phases[k].mode_percent / 100.0) <=
-                         std::max(kModeTolerance, out.sampling_error[k]);
-    if (done || out.rounds == 6) break;
-    for (std::size_t k = 0; k < r.phases.size(); ++k) {
-      const double ratio = r.phases[k].mode_percent / 100.0 / std::max(out.area_fraction[k], 1e-4);
-      out.density_per_mm3[k] *= std::clamp(ratio, 0.3, 3.0);
-    }
+  // The densities are intensive, so a large section takes them from a centred window of the
+  // calibration area first; the whole section then starts from them and is checked as before.
+  const double area = r.width_mm * r.height_mm;
+  if (area > kCalibrationWindowMm2) {
+    RockRecipe w = r;
+    const double k = std::sqrt(kCalibrationWindowMm2 / area);
+    w.width_mm *= k;
+    w.height_mm *= k;
+    calibrate(w, models, seed, out);
+    out.window_rounds = out.rounds;
   }
+  DrawnRock d = calibrate(r, models, seed, out);
   // Keep the crystals that own part of the section.
   double min_size = 1e300;
   for (const PhaseRecipe& ph : r.phases) min_size = std::min(min_size, ph.csd.min_mm);
-  measure_areas(r, tiling_of(r, crystals, models), min_size, crystals);
-  out.crystals = std::move(crystals);
+  measure_areas(r, d.tiling, min_size, d.crystals);
+  out.crystals = std::move(d.crystals);
   return out;
 }
 
@@ -357,9 +385,19 @@ nlohmann::json subgrains_json(const UnduloseRecipe& u, Random& rng) {
           {"wall_normal", {wall.x, wall.y, wall.z}}};
 }
 
-nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed) {
-  nlohmann::json grains = nlohmann::json::array();
+nlohmann::json rock_section_header_json(const RockRecipe& r, std::uint64_t seed) {
+  return {{"type", "section"},
+          {"name", r.name},
+          {"thickness_um", r.thickness_um},
+          {"size_mm", {r.width_mm, r.height_mm}},
+          {"source", "Grown by the texture engine (core/texture) from " + r.path + " with seed " + std::to_string(seed) +
+                         ". " + r.source}};
+}
+
+void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed,
+                              const std::function<void(const nlohmann::json&)>& grain) {
   Random rng(splitmix64(seed ^ 0x5B9A1Full));
+  std::size_t written = 0;
   for (const GrownCrystal& c : g.crystals) {
     if (!(c.area_mm2 > 0.0)) continue;
     const PhaseRecipe& ph = r.phases[c.phase];
@@ -375,19 +413,21 @@ nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::
     if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
     if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
       // The secondary mineral in a random orientation of its own (it grew in the cracks).
-      const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), static_cast<std::size_t>(grains.size()));
+      const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
       j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
     }
-    grains.push_back(std::move(j));
+    grain(j);
+    ++written;
   }
-  if (!r.matrix_mineral.empty()) grains.push_back({{"mineral", r.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}});
-  return {{"type", "section"},
-          {"name", r.name},
-          {"thickness_um", r.thickness_um},
-          {"size_mm", {r.width_mm, r.height_mm}},
-          {"source", "Grown by the texture engine (core/texture) from " + r.path + " with seed " + std::to_string(seed) +
-                         ". " + r.source},
-          {"grains", std::move(grains)}};
+  if (!r.matrix_mineral.empty()) grain({{"mineral", r.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}});
+}
+
+nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed) {
+  nlohmann::json j = rock_section_header_json(r, seed);
+  nlohmann::json grains = nlohmann::json::array();
+  for_each_rock_grain_json(r, g, seed, [&](const nlohmann::json& grain) { grains.push_back(grain); });
+  j["grains"] = std::move(grains);
+  return j;
 }
 
 }  // namespace pmsim
