@@ -48,7 +48,7 @@ Scene quartz_plate(int size) {
 TEST(OpticalDomains, SectionDomainsAreSlideMediumThenEachGrainsZonesAndTwins) {
   Scene s = quartz_plate(8);
   s.sample.type = SampleType::Section;
-  s.sample.section = "gabbro";  // has twinned and zoned (hornblende-rimmed) augite
+  s.sample.section = "gabbro";  // grown: normally zoned, albite-twinned plagioclase
   const OpticalDomains d = optical_domains(s);
   ASSERT_NE(d.section, nullptr);
   ASSERT_GT(d.section->grains.size(), 1u);
