@@ -7,6 +7,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/units.h"
+#include "core/crystal/axis_rotation.h"
 #include "core/crystal/euler_angles.h"
 
 namespace pmsim {
@@ -75,6 +76,36 @@ TEST(EulerBunge, RejectsReflectionsAndNonOrthonormal) {
   glm::dmat3 scaled(1.0);
   scaled[0][0] = 1.1;
   EXPECT_THROW(bunge_from_crystal_to_sample(scaled), std::invalid_argument);
+}
+
+// Rodrigues against the closed forms: a quarter turn about z takes x to y; the smallest rotation
+// taking a to b takes a to b, keeps a × b fixed, is proper orthonormal, and turns by the angle
+// between them (trace = 1 + 2 cos θ). Tolerance 1e-12: a few roundings of order-1 terms.
+TEST(AxisRotation, RodriguesAndTheSmallestRotationBetweenTwoDirections) {
+  const glm::dvec3 y = axis_rotation({0, 0, 1}, radians(90.0)) * glm::dvec3(1, 0, 0);
+  EXPECT_NEAR(y.x, 0.0, 1e-12);
+  EXPECT_NEAR(y.y, 1.0, 1e-12);
+  EXPECT_NEAR(y.z, 0.0, 1e-12);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> n;
+  for (int k = 0; k < 200; ++k) {
+    const glm::dvec3 a = glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
+    const glm::dvec3 b = glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
+    const glm::dmat3 Q = rotation_taking(a, b);
+    const glm::dvec3 qa = Q * a, axis = glm::cross(a, b), qaxis = Q * axis;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(qa[i], b[i], 1e-12);
+      EXPECT_NEAR(qaxis[i], axis[i], 1e-12);
+    }
+    EXPECT_NEAR(glm::determinant(Q), 1.0, 1e-12);
+    const glm::dmat3 QtQ = glm::transpose(Q) * Q;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) EXPECT_NEAR(QtQ[c][r], c == r ? 1.0 : 0.0, 1e-12);
+    EXPECT_NEAR(Q[0][0] + Q[1][1] + Q[2][2], 1.0 + 2.0 * glm::dot(a, b), 1e-12);
+  }
+  const glm::dmat3 same = rotation_taking({0, 1, 0}, {0, 1, 0});  // parallel: the identity
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) EXPECT_EQ(same[c][r], c == r ? 1.0 : 0.0);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "core/base/input_error.h"
 #include "core/base/json_reader.h"
 #include "core/base/units.h"
+#include "core/crystal/axis_rotation.h"
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/lattice.h"
 #include "core/crystal/mineral_crystallography.h"
@@ -69,7 +70,7 @@ DomainPart SectionMap::domain_part(int d) const {
   part.grain = domain_grain_[d];
   const SectionGrain& g = grains[part.grain];
   const int per_twin = g.twinned ? 2 : 1, subgrains = g.subgrain_count(), k = d - g.first_domain;
-  if (g.vein && k == static_cast<int>(g.zones.size()) * per_twin * subgrains) {
+  if (g.vein && k == g.crystal_domain_count()) {
     part.vein = true;
     return part;
   }
@@ -284,7 +285,7 @@ int SectionMap::crack_family_at(const glm::dvec2& p, int& grain, double min_widt
 
 int SectionMap::crack_domain(int grain) const {
   const SectionGrain& g = grains[std::size_t(grain)];
-  return g.vein ? g.first_domain + static_cast<int>(g.zones.size()) * (g.twinned ? 2 : 1) * g.subgrain_count() : kMediumDomain;
+  return g.vein ? g.first_domain + g.crystal_domain_count() : kMediumDomain;
 }
 
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
@@ -352,18 +353,6 @@ glm::dmat3 half_turn(const glm::dvec3& u) {
   glm::dmat3 r(0.0);
   for (int c = 0; c < 3; ++c)
     for (int rr = 0; rr < 3; ++rr) r[c][rr] = 2.0 * u[c] * u[rr] - (c == rr ? 1.0 : 0.0);
-  return r;
-}
-
-// Rotation by angle θ about unit axis u (Rodrigues): R = cos θ I + sin θ [u]× + (1 − cos θ) uuᵀ.
-glm::dmat3 axis_rotation(const glm::dvec3& u, double theta_rad) {
-  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
-  glm::dmat3 r(0.0);  // r[column][row]
-  for (int col = 0; col < 3; ++col)
-    for (int row = 0; row < 3; ++row) r[col][row] = (1.0 - c) * u[row] * u[col] + (row == col ? c : 0.0);
-  r[1][0] -= s * u.z, r[0][1] += s * u.z;  // [u]× = ((0, −z, y), (z, 0, −x), (−y, x, 0)) by rows
-  r[2][0] += s * u.y, r[0][2] -= s * u.y;
-  r[2][1] -= s * u.x, r[1][2] += s * u.x;
   return r;
 }
 

@@ -122,9 +122,10 @@ struct SectionGrain {
     double width_mm = 0.0;
   };
   std::optional<VeinFill> vein;
-  // Domains first_domain … first_domain + zones·(twinned ? 2 : 1)·subgrain_count() − 1, in the
-  // order zone, twin individual, subgrain (the last varying fastest); then the vein's, if any.
+  // Domains first_domain … first_domain + crystal_domain_count() − 1, in the order zone, twin
+  // individual, subgrain (the last varying fastest); then the vein's, if any.
   int first_domain = 2;
+  int crystal_domain_count() const { return static_cast<int>(zones.size()) * (twinned ? 2 : 1) * subgrain_count(); }
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
