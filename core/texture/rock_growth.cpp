@@ -9,8 +9,10 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/base/splitmix64.h"
+#include "core/crystal/axis_rotation.h"
 #include "core/crystal/crystal_polyhedron.h"
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/mineral_crystallography.h"
@@ -102,14 +104,7 @@ std::array<double, 3> aligned(const std::array<double, 3>& euler_deg, const Fabr
   glm::dvec3 target = glm::normalize(glm::dvec3(f.direction[0], f.direction[1], f.direction[2]) + s * gaussian3(rng));
   const glm::dvec3 a = glm::normalize(L0 * axis_crystal);
   if (glm::dot(a, target) < 0.0) target = -target;  // an axis, not a vector
-  const glm::dvec3 k = glm::cross(a, target);
-  const double sin_t = glm::length(k), cos_t = glm::dot(a, target);
-  glm::dmat3 Q(1.0);
-  if (sin_t > 1e-12) {  // Rodrigues: Q = I + sin θ K + (1 − cos θ) K²
-    const glm::dvec3 u = k / sin_t;
-    const glm::dmat3 K(0.0, u.z, -u.y, -u.z, 0.0, u.x, u.y, -u.x, 0.0);
-    Q = glm::dmat3(1.0) + sin_t * K + (1.0 - cos_t) * (K * K);
-  }
+  const glm::dmat3 Q = rotation_taking(a, target);
   const EulerBunge e = bunge_from_crystal_to_sample(Q * L0);
   return {e.phi1_rad * 180.0 / kPi, e.Phi_rad * 180.0 / kPi, e.phi2_rad * 180.0 / kPi};
 }
@@ -200,11 +195,13 @@ GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crys
 // looked up in parallel into a raster of owners, then counted in order.
 std::vector<std::size_t> owner_counts(const RockRecipe& r, const GrownTiling& t, int nx, int ny) {
   std::vector<int> owners(static_cast<std::size_t>(nx) * ny);
-  tbb::parallel_for(0, ny, [&](int j) {
-    for (int i = 0; i < nx; ++i) {
-      const glm::dvec2 p{((i + 0.5) / nx - 0.5) * r.width_mm, ((j + 0.5) / ny - 0.5) * r.height_mm};
-      owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
-    }
+  tbb::this_task_arena::isolate([&] {  // isolated: see grown_tiling.cpp
+    tbb::parallel_for(0, ny, [&](int j) {
+      for (int i = 0; i < nx; ++i) {
+        const glm::dvec2 p{((i + 0.5) / nx - 0.5) * r.width_mm, ((j + 0.5) / ny - 0.5) * r.height_mm};
+        owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
+      }
+    });
   });
   std::vector<std::size_t> n(t.crystals().size() + 1, 0);
   for (const int o : owners) ++n[o < 0 ? t.crystals().size() : static_cast<std::size_t>(o)];
