@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the shipped thin sections (granite, basalt, schist) from stated modal
+"""Writes the shipped thin sections (granite, schist) from stated modal
 compositions and grain-size distributions. Format and geometry rules: docs/sections.md.
 
 Each section is a list of grains: mineral, centre and size in mm, Bunge Euler angles (crystal to
@@ -26,10 +26,6 @@ FULL_LIBRARY = True
 
 def plag(an):
     return "plagioclase:An%d" % an if FULL_LIBRARY else "plagioclase"
-
-
-def olivine(fo):
-    return "olivine:Fo%d" % fo if FULL_LIBRARY else "olivine"
 
 
 def r3(v):
@@ -125,34 +121,6 @@ class Placer:
                     break
         return out
 
-    def place_more(self, rng, sizes):
-        """Grains added after the rock's own (accessory opaques), drawn with their own random
-        stream so that the grains before them keep their places and orientations: each keeps the
-        same hard core against every grain already placed, tried 80 times, else dropped."""
-        out = []
-        for s, payload in sorted(sizes, key=lambda t: -t[0]):
-            for _ in range(80):
-                x = rng.uniform(-0.5 * self.w, 0.5 * self.w)
-                y = rng.uniform(-0.5 * self.h, 0.5 * self.h)
-                if self.fits(x, y, s):
-                    key = (int((x + self.w) // self.cell), int((y + self.h) // self.cell))
-                    self.small.setdefault(key, []).append((x, y, s))
-                    out.append((x, y, s, payload))
-                    break
-        return out
-
-
-def opaque_grains(placer, rng, area_mm2, mode, fill=0.9):
-    """Opaque oxides (magnetite, ilmenite) of a rock, appended after its other grains: equant
-    magnetite at random orientation, ilmenite as plates on (0001) (Nesse 2012; Anthony et al.
-    1997, Handbook of Mineralogy vol. III). Their own random stream (seeded apart from the rock's)
-    keeps every other grain of the file where it was before they were added."""
-    grains = []
-    for x, y, s, m in placer.place_more(rng, draw_sizes(rng, area_mm2, mode, fill)):
-        e = random_euler(rng)
-        grains.append(grain(m, x, y, s, e, aspect=3.0) if m == "ilmenite" else grain(m, x, y, s, e))
-    return grains
-
 
 def draw_sizes(rng, area_mm2, mode, fill=0.9):
     # Grains per mineral until its share of the area is met; sizes log-normal (median, σ of ln),
@@ -214,60 +182,6 @@ def granite(rng):
     return section("granite", [w, h], src, grains)
 
 
-def basalt(rng):
-    # Porphyritic olivine basalt: phenocrysts of plagioclase (8 %), olivine (6 %) and augite (2 %)
-    # 0.5-3 mm in an intergranular groundmass of plagioclase laths (45 %) and augite (35 %) with
-    # some olivine (4 %), 0.05-0.2 mm (MacKenzie, Donaldson & Guilford 1982, "Atlas of Igneous
-    # Rocks and their Textures", figs. 36-40; Cox, Bell & Pankhurst 1979, "The Interpretation of
-    # Igneous Rocks", ch. 12). Plagioclase phenocrysts zoned normally (An78 core to An52 rim) or
-    # oscillatorily (An70/An62 bands), olivine phenocrysts Fo88 cores to Fo76 rims (the ranges of
-    # Deer, Howie & Zussman 2013 for basaltic phenocrysts).
-    w, h = 8.0, 6.0
-    mode = [("plag_ph", 0.08, 1.5, 0.4), ("ol_ph", 0.06, 1.0, 0.35), ("aug_ph", 0.02, 0.8, 0.3),
-            ("plag", 0.45, 0.14, 0.35), ("augite", 0.35, 0.09, 0.3), ("ol", 0.04, 0.08, 0.3)]
-    grains = []
-    placer = Placer(rng, w, h)
-    for x, y, s, m in placer.place(draw_sizes(rng, w * h, mode)):
-        e = random_euler(rng)
-        if m == "plag_ph":
-            g = grain(plag(70), x, y, s, e)
-            if FULL_LIBRARY:
-                if rng.random() < 0.5:  # normal zoning
-                    zones = [(78, 0.35), (72, 0.6), (64, 0.8), (56, 0.93), (52, 1.0)]
-                else:  # oscillatory zoning
-                    zones = [(72, 0.3)] + [((70 if i % 2 else 62), r3(0.3 + 0.07 * (i + 1))) for i in range(10)]
-                g["zones"] = [{"mineral": plag(an), "outer_fraction": f} for an, f in zones]
-                g.update(aspect=2.5, twin={"law": "albite", "lamella_mm": r3(rng.uniform(0.03, 0.08))})
-            grains.append(g)
-        elif m == "ol_ph":
-            g = grain(olivine(88), x, y, s, e)
-            if FULL_LIBRARY:
-                g["zones"] = [{"mineral": olivine(fo), "outer_fraction": f} for fo, f in ((88, 0.6), (84, 0.8), (76, 1.0))]
-            grains.append(g)
-        elif m == "aug_ph":
-            grains.append(grain("augite", x, y, s, e, aspect=2.0))
-        elif m == "plag":
-            g = grain(plag(60), x, y, s, e)
-            if FULL_LIBRARY:  # laths with a few albite lamellae
-                g.update(aspect=5.0, twin={"law": "albite", "lamella_mm": r3(s / rng.choice((3, 4, 5)) / 2.5)})
-            grains.append(g)
-        elif m == "augite":
-            grains.append(grain("augite", x, y, s, e, aspect=1.5))  # granular groundmass pyroxene
-        else:
-            grains.append(grain(olivine(75), x, y, s, e))
-    # Groundmass magnetite: small equant opaque grains (0.05-0.15 mm) among the groundmass minerals,
-    # as the atlas describes basalts (MacKenzie, Donaldson & Guilford 1982), a few per cent, the
-    # order of the normative magnetite of basalt analyses (Cox, Bell & Pankhurst 1979). Appended
-    # after the rock's grains with its own random stream (seed 1011).
-    grains += opaque_grains(placer, random.Random(1011), w * h, [("magnetite", 0.04, 0.08, 0.3)])
-    src = ("Generated by generate_sections.py: porphyritic olivine basalt, phenocrysts plagioclase 8, olivine 6, augite 2 "
-           "vol% (0.5-3 mm) in a groundmass of plagioclase laths 45, augite 35, olivine 4 (0.05-0.2 mm) and magnetite "
-           "(4 vol% drawn, 4.0 % of the area measured: small equant opaque grains), after MacKenzie, "
-           "Donaldson & Guilford 1982, Atlas of Igneous Rocks and their Textures, and Cox, Bell & Pankhurst 1979, The "
-           "Interpretation of Igneous Rocks; zoning ranges after Deer, Howie & Zussman 2013; random orientations")
-    return section("basalt", [w, h], src, grains)
-
-
 def schist(rng):
     # Garnet-mica schist (pelitic, amphibolite facies): quartz 40 %, muscovite 25 %, biotite 15 %,
     # plagioclase 8 %, garnet porphyroblasts 10 % (1-3 mm), tourmaline 2 % (Yardley 1989, "An
@@ -301,7 +215,7 @@ def schist(rng):
     return section("schist", [w, h], src, grains)
 
 
-SECTIONS = (("granite", granite, 7), ("basalt", basalt, 11), ("schist", schist, 17))
+SECTIONS = (("granite", granite, 7), ("schist", schist, 17))
 
 
 def dump(sec):

@@ -304,7 +304,8 @@ RockGrowth grow_foam(const RockRecipe& r, std::uint64_t seed) {
 }
 
 // Draws, packs, tiles and measures the phases, scaling each density by target / measured area
-// fraction until every phase is within kModeTolerance or its sampling error (at most 6 rounds);
+// fraction until every phase is within kModeTolerance or its sampling error (at most
+// kMaxCalibrationRounds);
 // the last round's crystals and their tiling.
 struct DrawnRock {
   std::vector<GrownCrystal> crystals;
@@ -317,6 +318,10 @@ DrawnRock calibrate(const RockRecipe& r, const std::vector<PhaseModel>& models, 
   const int nx = static_cast<int>(std::ceil(250.0 * r.width_mm / std::max(r.width_mm, r.height_mm)));
   const int ny = static_cast<int>(std::ceil(250.0 * r.height_mm / std::max(r.width_mm, r.height_mm)));
   DrawnRock d;
+  // Per phase: the exponent of its step (halved each time its error changes sign while still out
+  // of tolerance: a phase that competes with another can respond to its own density more than
+  // proportionally, and the plain ratio then overshoots back and forth), and its last error.
+  std::vector<double> exponent(r.phases.size(), 1.0), last_error(r.phases.size(), 0.0);
   for (out.rounds = 1;; ++out.rounds) {
     d.crystals.clear();
     for (std::size_t k = 0; k < r.phases.size(); ++k) {
@@ -327,13 +332,19 @@ DrawnRock calibrate(const RockRecipe& r, const std::vector<PhaseModel>& models, 
     d.tiling = tiling_of(r, d.crystals, models);
     measure_phases(r, d.crystals, owner_counts(r, d.tiling, nx, ny), out);
     bool done = true;
-    for (std::size_t k = 0; k < r.phases.size(); ++k)
-      done = done && std::abs(out.area_fraction[k] - r.phases[k].mode_percent / 100.0) <=
-                         std::max(kModeTolerance, out.sampling_error[k]);
-    if (done || out.rounds == 6) return d;
+    std::vector<bool> within(r.phases.size());
     for (std::size_t k = 0; k < r.phases.size(); ++k) {
+      within[k] = std::abs(out.area_fraction[k] - r.phases[k].mode_percent / 100.0) <=
+                  std::max(kModeTolerance, out.sampling_error[k]);
+      done = done && within[k];
+    }
+    if (done || out.rounds == kMaxCalibrationRounds) return d;
+    for (std::size_t k = 0; k < r.phases.size(); ++k) {
+      const double error = r.phases[k].mode_percent / 100.0 - out.area_fraction[k];
+      if (!within[k] && error * last_error[k] < 0.0) exponent[k] *= 0.5;
+      last_error[k] = error;
       const double ratio = r.phases[k].mode_percent / 100.0 / std::max(out.area_fraction[k], 1e-4);
-      out.density_per_mm3[k] *= std::clamp(ratio, 0.3, 3.0);
+      out.density_per_mm3[k] *= std::clamp(std::pow(ratio, exponent[k]), 0.3, 3.0);
     }
   }
 }
