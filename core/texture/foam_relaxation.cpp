@@ -7,7 +7,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "core/base/splitmix64.h"
 
@@ -102,13 +101,11 @@ std::vector<glm::dvec3> relaxed_foam_nuclei(const FoamBox& box, std::size_t coun
     glm::dvec3 step, offset;
     for (int a = 0; a < 3; ++a) step[a] = extent[a] / n[a], offset[a] = uniform() * step[a];
     const auto point = [&](int i, int j, int k) { return box.lo + offset + glm::dvec3(i, j, k) * step; };
-    tbb::this_task_arena::isolate([&] {  // isolated: see grown_tiling.cpp
-      tbb::parallel_for(tbb::blocked_range<int>(0, n[2]), [&](const tbb::blocked_range<int>& ks) {
-        for (int k = ks.begin(); k < ks.end(); ++k)
-          for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i)
-              owner[(std::size_t(k) * n[1] + j) * n[0] + i] = static_cast<std::uint32_t>(grid.nearest(point(i, j, k)));
-      });
+    tbb::parallel_for(tbb::blocked_range<int>(0, n[2]), [&](const tbb::blocked_range<int>& ks) {
+      for (int k = ks.begin(); k < ks.end(); ++k)
+        for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
+            owner[(std::size_t(k) * n[1] + j) * n[0] + i] = static_cast<std::uint32_t>(grid.nearest(point(i, j, k)));
     });
     for (int k = 0; k < n[2]; ++k)
       for (int j = 0; j < n[1]; ++j)

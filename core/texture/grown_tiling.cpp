@@ -8,7 +8,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 namespace pmsim {
 
@@ -93,7 +92,7 @@ std::vector<double> GrownTiling::cell_upper_bounds(const glm::dvec2& origin) con
   const std::size_t cells = static_cast<std::size_t>(cells_x_) * cells_y_;
   tbb::enumerable_thread_specific<std::vector<double>> local([cells] { return std::vector<double>(cells, kInf); });
   const double s_cover = capped_ ? 1.0 : kUncappedCover;
-  const auto bound = [&](const tbb::blocked_range<int>& range) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(crystals_.size()), kCrystalBlock), [&](const tbb::blocked_range<int>& range) {
     std::vector<double>& upper = local.local();
     NodeWindow w;
     for (int i = range.begin(); i < range.end(); ++i) {
@@ -108,11 +107,6 @@ std::vector<double> GrownTiling::cell_upper_bounds(const glm::dvec2& origin) con
           u = std::min(u, t + 1e-9 * (std::abs(t) + 1.0));  // rounding margin
         }
     }
-  };
-  // Isolated, like every parallel loop of the engine: a section is built under its cache's lock
-  // (build_cache.h), and a thread waiting here must not take up an outer task that wants that lock.
-  tbb::this_task_arena::isolate([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(crystals_.size()), kCrystalBlock), bound);
   });
   std::vector<double> upper(cells, kInf);
   for (const std::vector<double>& u : local)
@@ -162,11 +156,9 @@ GrownTiling::GrownTiling(std::vector<GrainGrowth> crystals, bool capped, double 
   for (const double u : upper) u_max = std::max(u_max, u);
   const int n = static_cast<int>(crystals_.size()), blocks = (n + kCrystalBlock - 1) / kCrystalBlock;
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(blocks));  // (cell, crystal)
-  tbb::this_task_arena::isolate([&] {
-    tbb::parallel_for(0, blocks, [&](int b) {
-      NodeWindow w;
-      for (int i = b * kCrystalBlock; i < std::min(n, (b + 1) * kCrystalBlock); ++i) candidate_cells(i, origin, upper, u_max, w, found[b]);
-    });
+  tbb::parallel_for(0, blocks, [&](int b) {
+    NodeWindow w;
+    for (int i = b * kCrystalBlock; i < std::min(n, (b + 1) * kCrystalBlock); ++i) candidate_cells(i, origin, upper, u_max, w, found[b]);
   });
   cell_start_.assign(upper.size() + 1, 0);
   for (const auto& f : found)

@@ -9,7 +9,6 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "core/base/splitmix64.h"
 #include "core/crystal/axis_rotation.h"
@@ -195,13 +194,11 @@ GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crys
 // looked up in parallel into a raster of owners, then counted in order.
 std::vector<std::size_t> owner_counts(const RockRecipe& r, const GrownTiling& t, int nx, int ny) {
   std::vector<int> owners(static_cast<std::size_t>(nx) * ny);
-  tbb::this_task_arena::isolate([&] {  // isolated: see grown_tiling.cpp
-    tbb::parallel_for(0, ny, [&](int j) {
-      for (int i = 0; i < nx; ++i) {
-        const glm::dvec2 p{((i + 0.5) / nx - 0.5) * r.width_mm, ((j + 0.5) / ny - 0.5) * r.height_mm};
-        owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
-      }
-    });
+  tbb::parallel_for(0, ny, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      const glm::dvec2 p{((i + 0.5) / nx - 0.5) * r.width_mm, ((j + 0.5) / ny - 0.5) * r.height_mm};
+      owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
+    }
   });
   std::vector<std::size_t> n(t.crystals().size() + 1, 0);
   for (const int o : owners) ++n[o < 0 ? t.crystals().size() : static_cast<std::size_t>(o)];
@@ -305,8 +302,7 @@ RockGrowth grow_foam(const RockRecipe& r, std::uint64_t seed) {
 
 // Draws, packs, tiles and measures the phases, scaling each density by target / measured area
 // fraction until every phase is within kModeTolerance or its sampling error (at most
-// kMaxCalibrationRounds);
-// the last round's crystals and their tiling.
+// kMaxCalibrationRounds); the last round's crystals and their tiling.
 struct DrawnRock {
   std::vector<GrownCrystal> crystals;
   GrownTiling tiling;
