@@ -26,6 +26,12 @@ json grain_report_json(const GrainReport& r) {
             {"optics", grain_optics_name(r)}};
   if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
   if (r.alteration) j["alteration"] = {{"mineral", r.alteration->mineral}, {"vein_mm", r.alteration->vein_mm}};
+  if (const auto& in = r.inclusions)
+    j["inclusions"] = {{"mineral", in->mineral},
+                       {"size_mm", in->size_mm},
+                       {"rim_trail_deg", in->rim_trail_deg},
+                       {"core_trail_deg", in->core_trail_deg},
+                       {"rotation_deg", in->rotation_deg}};
   if (r.subgrains)
     j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
                       {"step_deg", r.subgrains->step_deg},

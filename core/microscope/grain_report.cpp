@@ -157,6 +157,15 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   const std::optional<glm::dvec3> feature = first_cleavage ? first_cleavage : elongation;
   if (feature && !optics.circular) r.extinction_angle_deg = extinction_from(optics, *feature).angle_deg;
   if (g.vein) r.alteration = GrainAlterationReport{g.vein->mineral, g.vein->width_mm};
+  if (const auto& in = g.inclusions) {
+    // Trails at growth fraction s run at trail + rotation·(1 − s) (section_map.h): s = within at the rim.
+    const auto trail = [&](double s) {
+      const double a = in->trail_rad + in->rotation_rad * (1.0 - s);
+      return image_angle_deg({std::cos(a), std::sin(a), 0.0}, scene.stage_deg);
+    };
+    r.inclusions = GrainInclusionReport{in->mineral, in->size_mm, trail(in->within), trail(0.0),
+                                        in->rotation_rad * in->within * 180.0 / kPi};
+  }
   if (r.opaque) {
     // Black in every light: no extinction, interference colour or slow direction to observe.
     r.extinction_stage_deg.clear();

@@ -48,6 +48,15 @@ struct GrainAlterationReport {
   double vein_mm = 0.0;
 };
 
+// A grain with inclusions (SectionGrain::inclusions: the quartz trails of a garnet porphyroblast).
+// Trail directions are image angles [0, 180): at the inclusions' outer limit and in the core (the
+// same unless the grain turned as it grew; the core's differs by rotation_deg).
+struct GrainInclusionReport {
+  std::string mineral;
+  double size_mm = 0.0;
+  double rim_trail_deg = 0.0, core_trail_deg = 0.0, rotation_deg = 0.0;
+};
+
 struct GrainReport {
   int id = 0;           // the grain's label (SectionMap::grain_label)
   std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
@@ -70,6 +79,7 @@ struct GrainReport {
   std::optional<GrainTwinReport> twin;
   std::optional<GrainSubgrainReport> subgrains;
   std::optional<GrainAlterationReport> alteration;
+  std::optional<GrainInclusionReport> inclusions;
   // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
   // and crossed light, so nothing above is observable in transmitted light — the extinction
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left

@@ -74,6 +74,10 @@ DomainPart SectionMap::domain_part(int d) const {
     part.vein = true;
     return part;
   }
+  if (d >= g.first_inclusion_domain()) {
+    part.inclusion = d - g.first_inclusion_domain();
+    return part;
+  }
   part.subgrain = k % subgrains;
   part.twin = (k / subgrains) % per_twin;
   part.zone = k / subgrains / per_twin;
@@ -83,7 +87,9 @@ DomainPart SectionMap::domain_part(int d) const {
 const Crystal* SectionMap::crystal_of_domain(int d) const {
   const DomainPart part = domain_part(d);
   if (part.grain < 0) return nullptr;
-  return part.vein ? grains[part.grain].vein->crystal : grains[part.grain].zones[part.zone].crystal;
+  const SectionGrain& g = grains[part.grain];
+  if (part.inclusion >= 0) return g.inclusions->crystal;
+  return part.vein ? g.vein->crystal : g.zones[part.zone].crystal;
 }
 
 const glm::dmat3& SectionMap::orientation_of_domain(int d) const { return domain_orientation_[d]; }
@@ -94,7 +100,9 @@ const std::string& SectionMap::mineral_of_domain(int d) const {
   if (d == kMediumDomain) return medium;
   const DomainPart part = domain_part(d);
   if (part.grain < 0) return opaque;
-  return part.vein ? grains[part.grain].vein->mineral : grains[part.grain].zones[part.zone].mineral;
+  const SectionGrain& g = grains[part.grain];
+  if (part.inclusion >= 0) return g.inclusions->mineral;
+  return part.vein ? g.vein->mineral : g.zones[part.zone].mineral;
 }
 
 void SectionMap::finish() {
@@ -117,6 +125,11 @@ void SectionMap::finish() {
       domain_orientation_.push_back(g.vein->orientation);
       domain_grain_.push_back(static_cast<int>(i));
     }
+    if (g.inclusions)
+      for (const glm::dmat3& o : g.inclusions->orientations) {
+        domain_orientation_.push_back(o);
+        domain_grain_.push_back(static_cast<int>(i));
+      }
   }
   if (raster) {  // domain_at reads the raster: no tiling grid
     if (has_opaque_domain) {
@@ -288,9 +301,36 @@ int SectionMap::crack_domain(int grain) const {
   return g.vein ? g.first_domain + g.crystal_domain_count() : kMediumDomain;
 }
 
+// The inclusion (its orientation's index) of grain gi covering p, or −1. Trail and site of p in
+// the frame turned to the trails' local direction; each cell holds at most one inclusion, jittered
+// as far as it stays inside the cell (the reader keeps size ≤ spacing, width ≤ trail spacing).
+int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
+  const SectionGrain::InclusionSet& in = *g.inclusions;
+  const double s = g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
+  if (!(s <= in.within)) return -1;
+  const double a = in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0));
+  const glm::dvec2 d = p - g.centre_mm;
+  const double along = (std::cos(a) * d.x + std::sin(a) * d.y) / in.spacing_mm;
+  const double across = (-std::sin(a) * d.x + std::cos(a) * d.y) / in.trail_spacing_mm;
+  const double site = std::floor(along + 0.5), trail = std::floor(across + 0.5);
+  const auto hs = static_cast<std::uint64_t>(static_cast<std::int64_t>(site));
+  const auto ht = static_cast<std::uint64_t>(static_cast<std::int64_t>(trail));
+  const auto hg = static_cast<std::uint64_t>(gi) + 0x1C1u;
+  if (hash01(hg, ht, hs, 0) >= in.fraction) return -1;
+  const double half_l = 0.5 * in.size_mm / in.spacing_mm, half_w = 0.5 * in.width_mm / in.trail_spacing_mm;
+  const double cu = site + (1.0 - 2.0 * half_l) * (hash01(hg, ht, hs, 1) - 0.5);
+  const double cv = trail + (1.0 - 2.0 * half_w) * (hash01(hg, ht, hs, 2) - 0.5);
+  const double u = (along - cu) / half_l, v = (across - cv) / half_w;
+  if (u * u + v * v > 1.0) return -1;
+  const auto n = static_cast<int>(in.orientations.size());
+  return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
+}
+
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
   const SectionGrain& g = grains[gi];
+  if (g.inclusions)
+    if (const int k = inclusion_at(g, gi, p); k >= 0) return g.first_inclusion_domain() + k;
   const glm::dvec2 d = p - g.centre_mm;
   int zone = static_cast<int>(g.zones.size()) - 1;
   if (zone > 0 && g.growth) {
@@ -660,11 +700,46 @@ void read_vein(const JsonReader& gr, SectionGrain& g) {
   g.vein = v;
 }
 
+// "inclusions": {"mineral": m, "size_mm": l, "aspect": a, "spacing_mm": s, "trail_spacing_mm": t,
+//  "trail_deg": θ, "rotation_deg": ω, "fraction": f, "within": w, "euler_deg": [[φ1, Φ, φ2], ...]}
+// (SectionGrain::InclusionSet): each listed orientation is one domain.
+void read_inclusions(const JsonReader& gr, SectionGrain& g) {
+  const auto a = gr.optional_object("inclusions");
+  if (!a) return;
+  a->warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "trail_deg", "rotation_deg",
+                        "fraction", "within", "euler_deg"});
+  SectionGrain::InclusionSet in;
+  in.mineral = a->require<std::string>("mineral");
+  in.crystal = &known_mineral(*a, "mineral", in.mineral);
+  in.size_mm = a->require<double>("size_mm", Range::open_closed(0, 1));
+  in.width_mm = in.size_mm / a->get_or("aspect", 1.0, Range::closed(1, 20));
+  in.spacing_mm = a->require<double>("spacing_mm", Range::closed(in.size_mm, 5));
+  in.trail_spacing_mm = a->get_or("trail_spacing_mm", in.spacing_mm, Range::closed(in.width_mm, 5));
+  in.trail_rad = radians(a->get_or("trail_deg", 0.0, Range::closed(-360, 360)));
+  in.rotation_rad = radians(a->get_or("rotation_deg", 0.0, Range::closed(-720, 720)));
+  in.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
+  in.within = a->get_or("within", 1.0, Range::open_closed(0, 1));
+  const MineralCrystallography* mc = find_mineral_crystallography(in.mineral);
+  const json* list = a->find("euler_deg");
+  if (!list || !list->is_array() || list->empty() || list->size() > 64)
+    throw InputError(a->file(), a->path("euler_deg"), list ? shown(*list) : "",
+                     "expected an array of 1 to 64 orientations, each [phi1, Phi, phi2] in degrees");
+  for (const json& e : *list) {
+    const auto v = a->checked("euler_deg", *list, [&](const json&) {
+      if (!e.is_array() || e.size() != 3) throw BadValue{"each orientation is an array of 3 numbers"};
+      return std::array<double, 3>{number_value(e[0]), number_value(e[1]), number_value(e[2])};
+    });
+    in.orientations.push_back(
+        indicatrix_in_section(mc, crystal_to_sample_from_bunge({radians(v[0]), radians(v[1]), radians(v[2])})));
+  }
+  g.inclusions = std::move(in);
+}
+
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
 // reports, is the section's extent).
 void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
-  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration"})
-    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains or veins of its own");
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration", "inclusions"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains, veins or inclusions of its own");
   g.matrix = true;
   g.centre_mm = {0.0, 0.0};
   set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
@@ -736,6 +811,7 @@ void read_section_grain(const JsonReader& gr, SectionMap& m, HabitTemplates& tem
     read_grain(gr, g, m.thickness_um, templates);
   if (!g.matrix) read_subgrains(gr, g);
   if (!g.matrix) read_vein(gr, g);
+  if (!g.matrix) read_inclusions(gr, g);
   if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
   m.grains.push_back(std::move(g));
 }

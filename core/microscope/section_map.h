@@ -10,7 +10,8 @@
 // cleavage cracks along the traces of the cleavage planes, filled with mounting medium.
 //
 // Optical domains: 0 the slide beyond the section's extent, 1 the mounting medium in cracks (both
-// without a crystal), then per grain zones × twin individuals × subgrains.
+// without a crystal), then per grain zones × twin individuals × subgrains, its vein fill and its
+// inclusions' orientations.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -122,10 +123,33 @@ struct SectionGrain {
     double width_mm = 0.0;
   };
   std::optional<VeinFill> vein;
+  // Inclusions ("inclusions" in a section file): small crystals of another mineral that the grain
+  // grew round without consuming them — a poikiloblast's inclusion trails (the quartz a garnet
+  // overgrew, preserving the foliation as an internal one, Si), sericite dusting a plagioclase
+  // core. They lie on parallel trails trail_spacing_mm apart, one site every spacing_mm along a
+  // trail, each occupied with probability `fraction` (a hash of grain, trail and site: the same in
+  // every render), jittered within its cell and shaped as an ellipse size_mm long along the trail
+  // and width_mm across it. Only where the growth fraction s (grown grains; the normalised ellipse
+  // radius otherwise) is ≤ within. A porphyroblast that turned by rotation_rad while it grew
+  // turned the trails it caught at s by rotation_rad·(1 − s) since: at s the trails run at
+  // trail_rad + rotation_rad·(1 − s), curving from the core to the rim, where they meet the
+  // external foliation (spiral, "snowball" Si: Rosenfeld 1970, Geol. Soc. Am. Spec. Pap. 129;
+  // Passchier & Trouw 2005, Microtectonics, §7.4). One optical domain per orientation, after the
+  // vein's; an inclusion takes one by hash.
+  struct InclusionSet {
+    std::string mineral;
+    const Crystal* crystal = nullptr;
+    std::vector<glm::dmat3> orientations;  // indicatrix columns in the section frame
+    double size_mm = 0.0, width_mm = 0.0, spacing_mm = 0.0, trail_spacing_mm = 0.0;
+    double fraction = 1.0, within = 1.0, trail_rad = 0.0, rotation_rad = 0.0;
+  };
+  std::optional<InclusionSet> inclusions;
   // Domains first_domain … first_domain + crystal_domain_count() − 1, in the order zone, twin
-  // individual, subgrain (the last varying fastest); then the vein's, if any.
+  // individual, subgrain (the last varying fastest); then the vein's, if any; then one per
+  // inclusion orientation.
   int first_domain = 2;
   int crystal_domain_count() const { return static_cast<int>(zones.size()) * (twinned ? 2 : 1) * subgrain_count(); }
+  int first_inclusion_domain() const { return first_domain + crystal_domain_count() + (vein ? 1 : 0); }
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
@@ -148,6 +172,7 @@ struct DomainPart {
   int grain = -1;  // index into grains; −1 for the slide, the medium and a raster's opaque domain
   int zone = 0, twin = 0, subgrain = 0;
   bool vein = false;  // the grain's vein fill (SectionGrain::vein); zone, twin, subgrain then 0
+  int inclusion = -1;  // the orientation of the grain's inclusions (SectionGrain::inclusions); likewise
 };
 
 class SectionMap {

@@ -389,6 +389,32 @@ nlohmann::json subgrains_json(const UnduloseRecipe& u, Random& rng) {
           {"wall_normal", {wall.x, wall.y, wall.z}}};
 }
 
+// A crystal's inclusions (rock_recipe.h InclusionRecipe): the recipe's trail direction or a
+// random one, the turn of this crystal's growth, and random orientations of their own.
+nlohmann::json inclusions_json(const RockRecipe& r, const PhaseRecipe& ph, const GrownCrystal& c, std::uint64_t seed,
+                               std::size_t written) {
+  const InclusionRecipe& in = *ph.inclusions;
+  const std::uint64_t s = splitmix64(seed ^ 0x1C1A5ull);
+  const double trail =
+      in.trail_deg ? *in.trail_deg : 180.0 * static_cast<double>(splitmix64(s + 2 * written + 1) >> 11) * 0x1.0p-53;
+  const double turned = r.granoblastic ? 1.0 : std::min(1.0, c.size_mm / ph.csd.max_mm);
+  nlohmann::json euler = nlohmann::json::array();
+  for (int k = 0; k < in.orientations; ++k) {
+    const auto e = uniform_euler_deg(s, written * 64 + static_cast<std::size_t>(k));
+    euler.push_back({e[0], e[1], e[2]});
+  }
+  return {{"mineral", in.mineral},
+          {"size_mm", in.size_mm},
+          {"aspect", in.aspect},
+          {"spacing_mm", in.spacing_mm},
+          {"trail_spacing_mm", in.trail_spacing_mm},
+          {"fraction", in.fraction},
+          {"within", in.within},
+          {"trail_deg", trail},
+          {"rotation_deg", in.rotation_deg * turned},
+          {"euler_deg", std::move(euler)}};
+}
+
 nlohmann::json rock_section_header_json(const RockRecipe& r, std::uint64_t seed) {
   return {{"type", "section"},
           {"name", r.name},
@@ -420,6 +446,7 @@ void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uin
       const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
       j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
     }
+    if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written);
     grain(j);
     ++written;
   }

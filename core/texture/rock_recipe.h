@@ -20,6 +20,10 @@
 //                "undulose": {"subgrain_mm": 0.05, "step_deg": 1.5},  (optional: bent, polygonized)
 //                "alteration": {"mineral": "antigorite", "vein_mm": 0.02, "fraction": 1},
 //                                            (optional: the cracks filled with a secondary mineral)
+//                "inclusions": {"mineral": "quartz", "size_mm": 0.04, "aspect": 2.5, "spacing_mm": 0.1,
+//                               "trail_spacing_mm": 0.08, "fraction": 0.6, "within": 0.85,
+//                               "trail_deg": 15, "rotation_deg": 90, "orientations": 4},
+//                                            (optional: a poikiloblast's inclusion trails)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -77,6 +81,22 @@ struct AlterationRecipe {
   double fraction = 1.0;
 };
 
+// Inclusions the phase's crystals grew round (section_map.h SectionGrain::InclusionSet): small
+// crystals of `mineral` on trails trail_spacing_mm apart, one site every spacing_mm, each occupied
+// with probability `fraction`, within growth fraction `within` of the core. trail_deg (section
+// frame, counter-clockwise from east) is the external foliation the porphyroblast overgrew; absent,
+// each crystal's trails take a random direction (sericite dusting a core). rotation_deg is the turn
+// of a crystal of the CSD's largest size while it grew: all grew at one rate until the end (the
+// growth model), so a crystal of size L grew for a time ∝ L and turned rotation_deg·L/max_mm
+// (Rosenfeld 1970). Each crystal's inclusions take `orientations` random orientations.
+struct InclusionRecipe {
+  std::string mineral;
+  double size_mm = 0.03, aspect = 1.0, spacing_mm = 0.1, trail_spacing_mm = 0.1;
+  double fraction = 1.0, within = 1.0, rotation_deg = 0.0;
+  std::optional<double> trail_deg;
+  int orientations = 4;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -91,6 +111,7 @@ struct PhaseRecipe {
   std::optional<FabricRecipe> fabric;
   std::optional<UnduloseRecipe> undulose;
   std::optional<AlterationRecipe> alteration;
+  std::optional<InclusionRecipe> inclusions;
 };
 
 // A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
