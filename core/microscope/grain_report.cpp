@@ -21,14 +21,14 @@ constexpr glm::dvec3 kSectionNormal{0.0, 0.0, 1.0};
 
 // Image angle of a line lying in the section (section frame, z ≈ 0).
 double image_angle_deg(const glm::dvec3& t, double stage_deg) {
-  return line_direction_deg(std::atan2(t.y, t.x) * 180.0 / kPi + stage_deg);
+  return line_direction_deg(degrees(std::atan2(t.y, t.x)) + stage_deg);
 }
 
 // The stage angles in [0, 180) that put a vibration direction on the polarizer: the fast
 // direction's image angle φ_fast + θ ≡ polarizer (mod 90°), since the slow one is ⟂ it.
 std::vector<double> extinction_stages(const SectionOptics& s, double polarizer_deg) {
   if (s.circular) return {};
-  const double fast_section_deg = std::atan2(s.fast.y, s.fast.x) * 180.0 / kPi;
+  const double fast_section_deg = degrees(std::atan2(s.fast.y, s.fast.x));
   double t = std::fmod(polarizer_deg - fast_section_deg, 90.0);
   if (t < 0) t += 90.0;
   if (t >= 90.0) t -= 90.0;
@@ -49,7 +49,7 @@ GrainSubgrainReport subgrain_report(const SectionGrain& g) {
     const SectionOptics s = optics_of(g, g.subgrain_rotation[std::size_t(half + k)] * g.orientation,
                                       kGrainReportIndexWavelengthNm);
     if (s.circular) return r;
-    const double a = std::atan2(s.slow.y, s.slow.x) * 180.0 / kPi;
+    const double a = degrees(std::atan2(s.slow.y, s.slow.x));
     if (k == -within) first = a;
     const double rel = std::remainder(a - first, 180.0);  // lines: modulo 180°
     lo = std::min(lo, rel), hi = std::max(hi, rel);
@@ -164,7 +164,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
       return image_angle_deg({std::cos(a), std::sin(a), 0.0}, scene.stage_deg);
     };
     r.inclusions = GrainInclusionReport{in->mineral, in->size_mm, trail(in->within), trail(0.0),
-                                        in->rotation_rad * in->within * 180.0 / kPi};
+                                        degrees(in->rotation_rad * in->within)};
   }
   if (r.opaque) {
     // Black in every light: no extinction, interference colour or slow direction to observe.

@@ -304,14 +304,16 @@ int SectionMap::crack_domain(int grain) const {
 // The inclusion (its orientation's index) of grain gi covering p, or −1. Trail and site of p in
 // the frame turned to the trails' local direction; each cell holds at most one inclusion, jittered
 // as far as it stays inside the cell (the reader keeps size ≤ spacing, width ≤ trail spacing).
+namespace {
 int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
   const SectionGrain::InclusionSet& in = *g.inclusions;
   const double s = g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
   if (!(s <= in.within)) return -1;
   const double a = in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0));
   const glm::dvec2 d = p - g.centre_mm;
-  const double along = (std::cos(a) * d.x + std::sin(a) * d.y) / in.spacing_mm;
-  const double across = (-std::sin(a) * d.x + std::cos(a) * d.y) / in.trail_spacing_mm;
+  const double ca = std::cos(a), sa = std::sin(a);
+  const double along = (ca * d.x + sa * d.y) / in.spacing_mm;
+  const double across = (-sa * d.x + ca * d.y) / in.trail_spacing_mm;
   const double site = std::floor(along + 0.5), trail = std::floor(across + 0.5);
   const auto hs = static_cast<std::uint64_t>(static_cast<std::int64_t>(site));
   const auto ht = static_cast<std::uint64_t>(static_cast<std::int64_t>(trail));
@@ -325,6 +327,7 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
   const auto n = static_cast<int>(in.orientations.size());
   return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
 }
+}  // namespace
 
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
@@ -708,22 +711,24 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
   if (!a) return;
   a->warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "trail_deg", "rotation_deg",
                         "fraction", "within", "euler_deg"});
+  using L = InclusionRecipe;  // the limits a recipe's inclusions meet too (rock_recipe.h)
   SectionGrain::InclusionSet in;
   in.mineral = a->require<std::string>("mineral");
   in.crystal = &known_mineral(*a, "mineral", in.mineral);
-  in.size_mm = a->require<double>("size_mm", Range::open_closed(0, 1));
-  in.width_mm = in.size_mm / a->get_or("aspect", 1.0, Range::closed(1, 20));
-  in.spacing_mm = a->require<double>("spacing_mm", Range::closed(in.size_mm, 5));
-  in.trail_spacing_mm = a->get_or("trail_spacing_mm", in.spacing_mm, Range::closed(in.width_mm, 5));
-  in.trail_rad = radians(a->get_or("trail_deg", 0.0, Range::closed(-360, 360)));
-  in.rotation_rad = radians(a->get_or("rotation_deg", 0.0, Range::closed(-720, 720)));
+  in.size_mm = a->require<double>("size_mm", Range::open_closed(0, L::kMaxSizeMm));
+  in.width_mm = in.size_mm / a->get_or("aspect", 1.0, Range::closed(1, L::kMaxAspect));
+  in.spacing_mm = a->require<double>("spacing_mm", Range::closed(in.size_mm, L::kMaxSpacingMm));
+  in.trail_spacing_mm = a->get_or("trail_spacing_mm", in.spacing_mm, Range::closed(in.width_mm, L::kMaxSpacingMm));
+  in.trail_rad = radians(a->get_or("trail_deg", 0.0, Range::closed(-L::kMaxTrailDeg, L::kMaxTrailDeg)));
+  in.rotation_rad = radians(a->get_or("rotation_deg", 0.0, Range::closed(-L::kMaxRotationDeg, L::kMaxRotationDeg)));
   in.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
   in.within = a->get_or("within", 1.0, Range::open_closed(0, 1));
   const MineralCrystallography* mc = find_mineral_crystallography(in.mineral);
   const json* list = a->find("euler_deg");
-  if (!list || !list->is_array() || list->empty() || list->size() > 64)
+  if (!list || !list->is_array() || list->empty() || list->size() > std::size_t(L::kMaxOrientations))
     throw InputError(a->file(), a->path("euler_deg"), list ? shown(*list) : "",
-                     "expected an array of 1 to 64 orientations, each [phi1, Phi, phi2] in degrees");
+                     "expected an array of 1 to " + std::to_string(L::kMaxOrientations) +
+                         " orientations, each [phi1, Phi, phi2] in degrees");
   for (const json& e : *list) {
     const auto v = a->checked("euler_deg", *list, [&](const json&) {
       if (!e.is_array() || e.size() != 3) throw BadValue{"each orientation is an array of 3 numbers"};

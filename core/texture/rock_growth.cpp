@@ -392,11 +392,10 @@ nlohmann::json subgrains_json(const UnduloseRecipe& u, Random& rng) {
 // A crystal's inclusions (rock_recipe.h InclusionRecipe): the recipe's trail direction or a
 // random one, the turn of this crystal's growth, and random orientations of their own.
 nlohmann::json inclusions_json(const RockRecipe& r, const PhaseRecipe& ph, const GrownCrystal& c, std::uint64_t seed,
-                               std::size_t written) {
+                               std::size_t written, Random& rng) {
   const InclusionRecipe& in = *ph.inclusions;
   const std::uint64_t s = splitmix64(seed ^ 0x1C1A5ull);
-  const double trail =
-      in.trail_deg ? *in.trail_deg : 180.0 * static_cast<double>(splitmix64(s + 2 * written + 1) >> 11) * 0x1.0p-53;
+  const double trail = in.trail_deg ? *in.trail_deg : 180.0 * rng.uniform();
   const double turned = r.granoblastic ? 1.0 : std::min(1.0, c.size_mm / ph.csd.max_mm);
   nlohmann::json euler = nlohmann::json::array();
   for (int k = 0; k < in.orientations; ++k) {
@@ -446,7 +445,7 @@ void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uin
       const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
       j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
     }
-    if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written);
+    if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written, rng);
     grain(j);
     ++written;
   }

@@ -22,23 +22,23 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
   }
 }
 
-// The limits are the section reader's (section_map.cpp read_inclusions), checked here so that a
-// recipe's error names the recipe's key.
 InclusionRecipe read_inclusions(const JsonReader& a) {
+  using L = InclusionRecipe;
   a.warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "fraction", "within",
                        "trail_deg", "rotation_deg", "orientations"});
   InclusionRecipe in;
   in.mineral = a.require<std::string>("mineral");
   known_mineral(a, "mineral", in.mineral);
-  in.size_mm = a.require<double>("size_mm", Range::open_closed(0, 1));
-  in.aspect = a.get_or("aspect", 1.0, Range::closed(1, 20));
-  in.spacing_mm = a.require<double>("spacing_mm", Range::closed(in.size_mm, 5));
-  in.trail_spacing_mm = a.get_or("trail_spacing_mm", in.spacing_mm, Range::closed(in.size_mm / in.aspect, 5));
+  in.size_mm = a.require<double>("size_mm", Range::open_closed(0, L::kMaxSizeMm));
+  in.aspect = a.get_or("aspect", 1.0, Range::closed(1, L::kMaxAspect));
+  in.spacing_mm = a.require<double>("spacing_mm", Range::closed(in.size_mm, L::kMaxSpacingMm));
+  in.trail_spacing_mm =
+      a.get_or("trail_spacing_mm", in.spacing_mm, Range::closed(in.size_mm / in.aspect, L::kMaxSpacingMm));
   in.fraction = a.get_or("fraction", 1.0, Range::closed(0, 1));
   in.within = a.get_or("within", 1.0, Range::open_closed(0, 1));
-  in.trail_deg = a.optional<double>("trail_deg", Range::closed(-360, 360));
-  in.rotation_deg = a.get_or("rotation_deg", 0.0, Range::closed(-720, 720));
-  in.orientations = a.get_or("orientations", 4, Range::closed(1, 64));
+  in.trail_deg = a.optional<double>("trail_deg", Range::closed(-L::kMaxTrailDeg, L::kMaxTrailDeg));
+  in.rotation_deg = a.get_or("rotation_deg", 0.0, Range::closed(-L::kMaxRotationDeg, L::kMaxRotationDeg));
+  in.orientations = a.get_or("orientations", 4, Range::closed(1, L::kMaxOrientations));
   return in;
 }
 

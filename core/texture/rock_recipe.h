@@ -90,6 +90,12 @@ struct AlterationRecipe {
 // growth model), so a crystal of size L grew for a time ∝ L and turned rotation_deg·L/max_mm
 // (Rosenfeld 1970). Each crystal's inclusions take `orientations` random orientations.
 struct InclusionRecipe {
+  // The limits both readers enforce (this recipe's and a section file's, section_map.cpp): an
+  // inclusion no longer than its site spacing or wider than its trail spacing, so each cell holds
+  // at most one; at most kMaxOrientations domains per grain.
+  static constexpr double kMaxSizeMm = 1.0, kMaxAspect = 20.0, kMaxSpacingMm = 5.0;
+  static constexpr double kMaxTrailDeg = 360.0, kMaxRotationDeg = 720.0;
+  static constexpr int kMaxOrientations = 64;
   std::string mineral;
   double size_mm = 0.03, aspect = 1.0, spacing_mm = 0.1, trail_spacing_mm = 0.1;
   double fraction = 1.0, within = 1.0, rotation_deg = 0.0;
