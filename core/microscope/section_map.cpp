@@ -301,31 +301,57 @@ int SectionMap::crack_domain(int grain) const {
   return g.vein ? g.first_domain + g.crystal_domain_count() : kMediumDomain;
 }
 
-// The inclusion (its orientation's index) of grain gi covering p, or −1. Trail and site of p in
-// the frame turned to the trails' local direction; each cell holds at most one inclusion, jittered
-// as far as it stays inside the cell (the reader keeps size ≤ spacing, width ≤ trail spacing).
+// The inclusion (its orientation's index) of grain gi covering p, or −1. Each inclusion is a rigid
+// ellipse: caught at the growth fraction s_c of its centre on a straight trail, then turned with
+// the crystal by rotation·(1 − s_c) about the grain's centre. Its cell (trail, site) is found in
+// the frame of p's own turn; the few neighbouring cells cover the difference between that frame and
+// the centre's (a turn of rotation·Δs over an inclusion's length moves it by under a cell). Each
+// cell holds at most one inclusion, jittered as far as it stays inside the cell (the reader keeps
+// size ≤ spacing, width ≤ trail spacing).
 namespace {
+double grain_growth_fraction(const SectionGrain& g, const glm::dvec2& p) {
+  return g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
+}
+
 int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
   const SectionGrain::InclusionSet& in = *g.inclusions;
-  const double s = g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
-  if (!(s <= in.within)) return -1;
-  const double a = in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0));
+  const auto turn = [&](double s) { return in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0)); };
+  const double sp = grain_growth_fraction(g, p);
+  if (!(sp <= in.within + in.size_mm / std::max(g.semi_minor_mm, 1e-9))) return -1;
   const glm::dvec2 d = p - g.centre_mm;
-  const double ca = std::cos(a), sa = std::sin(a);
-  const double along = (ca * d.x + sa * d.y) / in.spacing_mm;
-  const double across = (-sa * d.x + ca * d.y) / in.trail_spacing_mm;
-  const double site = std::floor(along + 0.5), trail = std::floor(across + 0.5);
-  const auto hs = static_cast<std::uint64_t>(static_cast<std::int64_t>(site));
-  const auto ht = static_cast<std::uint64_t>(static_cast<std::int64_t>(trail));
-  const auto hg = static_cast<std::uint64_t>(gi) + 0x1C1u;
-  if (hash01(hg, ht, hs, 0) >= in.fraction) return -1;
+  const double ap = turn(sp), cp = std::cos(ap), spn = std::sin(ap);
+  const double site0 = std::floor((cp * d.x + spn * d.y) / in.spacing_mm + 0.5);
+  const double trail0 = std::floor((-spn * d.x + cp * d.y) / in.trail_spacing_mm + 0.5);
   const double half_l = 0.5 * in.size_mm / in.spacing_mm, half_w = 0.5 * in.width_mm / in.trail_spacing_mm;
-  const double cu = site + (1.0 - 2.0 * half_l) * (hash01(hg, ht, hs, 1) - 0.5);
-  const double cv = trail + (1.0 - 2.0 * half_w) * (hash01(hg, ht, hs, 2) - 0.5);
-  const double u = (along - cu) / half_l, v = (across - cv) / half_w;
-  if (u * u + v * v > 1.0) return -1;
-  const auto n = static_cast<int>(in.orientations.size());
-  return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
+  const auto hg = static_cast<std::uint64_t>(gi) + 0x1C1u;
+  for (int dt = -1; dt <= 1; ++dt)
+    for (int ds = -1; ds <= 1; ++ds) {
+      const double site = site0 + ds, trail = trail0 + dt;
+      const auto hs = static_cast<std::uint64_t>(static_cast<std::int64_t>(site));
+      const auto ht = static_cast<std::uint64_t>(static_cast<std::int64_t>(trail));
+      if (hash01(hg, ht, hs, 0) >= in.fraction) continue;
+      // The centre in the trails' own frame (mm), then turned by its own growth fraction's turn:
+      // a turn moves the centre along a circle about the grain's centre, nearly along a contour
+      // of s, so two fixed-point steps from p's turn settle it.
+      const double u = (site + (1.0 - 2.0 * half_l) * (hash01(hg, ht, hs, 1) - 0.5)) * in.spacing_mm;
+      const double v = (trail + (1.0 - 2.0 * half_w) * (hash01(hg, ht, hs, 2) - 0.5)) * in.trail_spacing_mm;
+      double a = ap, sc = sp;
+      glm::dvec2 c;
+      for (int k = 0; k < 2; ++k) {
+        c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
+        sc = grain_growth_fraction(g, g.centre_mm + c);
+        a = turn(sc);
+      }
+      c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
+      if (!(sc <= in.within)) continue;
+      const glm::dvec2 e = d - c;
+      const double ca = std::cos(a), sa = std::sin(a);
+      const double eu = (ca * e.x + sa * e.y) / (0.5 * in.size_mm), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
+      if (eu * eu + ev * ev > 1.0) continue;
+      const auto n = static_cast<int>(in.orientations.size());
+      return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
+    }
+  return -1;
 }
 }  // namespace
 
