@@ -35,6 +35,6 @@ TEST(SectionGenerator, RerunReproducesTheShippedFiles) {
         << f.path().filename() << " differs from the generator's output: rerun generate_sections.py";
     ++compared;
   }
-  EXPECT_GE(compared, 2);  // granite, schist (basalt and gabbro are grown from assets/rocks)
+  EXPECT_GE(compared, 1);  // granite (basalt, gabbro and schist are grown from assets/rocks)
   fs::remove_all(out);
 }

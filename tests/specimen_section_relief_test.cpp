@@ -151,14 +151,23 @@ TEST(SpecimenSectionRelief, GarnetHasADarkOutlineQuartzNearlyNone) {
 // above meets a consistent medium sequence: at each hit the side it comes from is the medium it
 // is in, down to the air below the slide.
 TEST(SpecimenSectionRelief, SlabIsWatertight) {
-  // Two grains and cracks: a schist-like window of a real section.
+  // A window of the grown schist inside a garnet: its inclusion trails (dozens of closed quartz
+  // regions 35 × 14 µm) and the grains round it.
   const auto map = pmsim::load_section("schist");
   pmsim::SectionSlabOptions so;
-  so.centre_mm = {0.3, -0.2};
+  so.centre_mm = {-1.85, -1.92};
   so.half_width_mm = 0.15;
   so.spacing_um = 1.5;
+  int inclusion_points = 0;  // the window must hold inclusions, or it tests nothing new
+  for (int k = 0; k < 10000; ++k) {
+    const glm::dvec2 p = so.centre_mm + so.half_width_mm * glm::dvec2{(k % 100 + 0.5) / 50.0 - 1.0, (k / 100 + 0.5) / 50.0 - 1.0};
+    const int d = map->domain_at(p);
+    inclusion_points += d != pmsim::SectionMap::kMediumDomain && map->domain_part(d).inclusion >= 0;
+  }
+  EXPECT_GT(inclusion_points, 100);
   const auto slab = pmsim::build_section_slab(map, pmsim::IsotropicMedium(pmsim::find_medium("mounting")), so);
-  std::printf("slab: %zu triangles, %d media\n", slab->triangle_count(), slab->medium_count());
+  std::printf("slab: %zu triangles, %d media, %d of 10000 points in inclusions\n", slab->triangle_count(),
+              slab->medium_count(), inclusion_points);
   // Every crystal region is closed: its faces, oriented with the normal out of it, use each edge
   // as often in one direction as in the other (the mounting medium is the rest of the layer).
   std::map<std::tuple<int, unsigned, unsigned>, int> edges;

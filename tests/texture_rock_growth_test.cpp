@@ -2,6 +2,7 @@
 // recipe, checked against geometry and against the recipe's own numbers.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -510,6 +511,33 @@ TEST(RockGrowth, EveryShippedRockGrowsWithItsModes) {
     ++rocks;
   }
   EXPECT_GE(rocks, 6);
+}
+
+}  // namespace
+}  // namespace pmsim
+
+namespace pmsim {
+namespace {
+
+// The schist's micas lie with (001) in the foliation (recipe fabric: plate normals along
+// (−sin 15°, cos 15°, 0), 8° spread), so their flakes' traces run along it: the doubled-angle
+// resultant of the 2-D long axes (as for the amphibolite above) ≥ 0.6 with its mean within 10° of
+// the foliation's 15°. A random-orientation mica tiling gives ≤ 3/√N (the amphibolite's control).
+TEST(RockGrowth, SchistMicasLieInTheFoliation) {
+  const RockRecipe r = small_rock("schist", 4.0);
+  const RockGrowth g = grow_rock(r, 5);
+  for (const int phase : {1, 2}) {
+    ASSERT_TRUE(r.phases[std::size_t(phase)].fabric.has_value()) << r.phases[std::size_t(phase)].name;
+    const std::vector<GrainShape> shapes = grain_shapes(r, g, phase, r.width_mm, 1200);
+    ASSERT_GT(shapes.size(), 50u) << r.phases[std::size_t(phase)].name;
+    double c = 0, s = 0;
+    for (const GrainShape& x : shapes) c += std::cos(2 * x.long_axis_rad), s += std::sin(2 * x.long_axis_rad);
+    const double resultant = std::hypot(c, s) / double(shapes.size()), mean_deg = 0.5 * std::atan2(s, c) * 180 / kPi;
+    std::printf("%s: shape resultant %.3f, mean %.1f deg over %zu flakes\n", r.phases[std::size_t(phase)].name.c_str(),
+                resultant, mean_deg, shapes.size());
+    EXPECT_GE(resultant, 0.6) << r.phases[std::size_t(phase)].name;
+    EXPECT_NEAR(mean_deg, 15.0, 10.0) << r.phases[std::size_t(phase)].name;
+  }
 }
 
 }  // namespace
