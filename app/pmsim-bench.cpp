@@ -1,4 +1,4 @@
-// pmsim-bench --apply-settings [--size N]: only the response's apply-settings timing (a frame's work).
+// pmsim-bench --apply-settings [--size N] [--threads N]: only the response's apply-settings timing (a frame's work).
 // pmsim-bench --rocks: only the rock-growth row (every recipe grown at 20 × 15 mm, time and memory).
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
 //             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR] [--from-json FILE]
@@ -9,8 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <unistd.h>
+
+#include <tbb/global_control.h>
 
 #include "core/io/cli_policy.h"
 #include "core/bench/bench_run.h"
@@ -103,6 +106,10 @@ int main(int argc, char** argv) {
     pmsim::cli::usage_error(kProgram, e.what());
   }
   try {
+    // --threads caps every parallel loop of the run, the ones that take no thread count of their
+    // own (the response's tracer and composer, rock growth) included.
+    std::optional<tbb::global_control> thread_cap;
+    if (opt.threads > 0) thread_cap.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(opt.threads));
     if (rocks) {
       std::cout << pmsim::rock_growth_table(pmsim::measure_rock_growth(20.0, 15.0));
       return 0;
