@@ -469,5 +469,34 @@ TEST(GrownSection, SchistGarnetTrailsTurnFromRimToCore) {
   EXPECT_EQ(n_out, 0);
 }
 
+// Garnet is a porphyroblast (assets/rocks/schist.json): it replaced the matrix it grew over, so
+// inside its free-growth shape every point is the garnet (or one of its own inclusions), never a
+// matrix grain; only another garnet that got there first may cut it. Sampled on a 0.02 mm raster
+// over every garnet's box: exact, so no tolerance — a single matrix point inside fails.
+TEST(GrownSection, SchistGarnetsHoldNoMatrixGrain) {
+  const auto m = load_section("schist");
+  int garnets = 0;
+  long inside = 0, foreign = 0;
+  for (std::size_t k = 0; k < m->grains.size(); ++k) {
+    const SectionGrain& g = m->grains[k];
+    if (g.mineral != "almandine" || !g.growth) continue;
+    ++garnets;
+    const double r = g.growth->shape.circumradius_mm;
+    for (double y = g.centre_mm.y - r; y <= g.centre_mm.y + r; y += 0.02)
+      for (double x = g.centre_mm.x - r; x <= g.centre_mm.x + r; x += 0.02) {
+        const glm::dvec2 p{x, y};
+        if (std::abs(x) > 0.5 * m->width_mm || std::abs(y) > 0.5 * m->height_mm) continue;
+        if (growth_fraction(*g.growth, p) > 0.999) continue;
+        ++inside;
+        const int label = m->grain_label(m->domain_at(p));  // 0: a crack's mounting medium
+        foreign += label != 0 && m->grain_by_label(label).mineral != "almandine";
+      }
+  }
+  std::printf("%d garnets, %ld points inside their free-growth shapes, %ld of a matrix grain\n", garnets, inside, foreign);
+  ASSERT_GT(garnets, 3);
+  ASSERT_GT(inside, 10000);
+  EXPECT_EQ(foreign, 0);
+}
+
 }  // namespace
 }  // namespace pmsim

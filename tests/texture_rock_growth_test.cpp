@@ -127,6 +127,42 @@ TEST(GrownTiling, ParallelBlocksGiveTheExhaustiveOwner) {
   EXPECT_EQ(blocks.size(), 3u);  // owners from every block
 }
 
+// Overgrowing crystals (porphyroblasts) own their free-growth shape whatever nucleated inside it:
+// with a matrix and without, the lookup grid still gives the exhaustive owner (the lead keeps
+// arrival nondecreasing in s), and every point with s ≤ 1 of an overgrowing crystal belongs to an
+// overgrowing crystal — among them, the one of least arrival time. Exact comparisons: the owner is
+// an index, no tolerance.
+TEST(GrownTiling, PorphyroblastsOwnTheirFreeGrowthShape) {
+  for (const bool capped : {true, false}) {
+    std::vector<GrainGrowth> crystals = random_crystals(300, 3.0, 5);
+    for (int i = 0; i < 300; i += 60) {  // five, twice their size, late (other crystals nucleate inside them)
+      crystals[i].overgrows = true;
+      crystals[i].from = 0.4;
+      for (double& h : crystals[i].shape.support_mm) h *= 2.0;
+      crystals[i].shape.circumradius_mm *= 2.0;
+    }
+    const GrownTiling t(crystals, capped, 3.0, 3.0);
+    int covered = 0;
+    for (int j = 0; j < 120; ++j)
+      for (int i = 0; i < 120; ++i) {
+        const glm::dvec2 p{(i + 0.37) / 120 * 3.0 - 1.5, (j + 0.61) / 120 * 3.0 - 1.5};
+        const int o = t.owner(p);
+        ASSERT_EQ(o, t.owner_exhaustive(p)) << capped << " at " << p.x << "," << p.y;
+        int first = -1;
+        double first_t = 1e300;
+        for (int k = 0; k < 300; k += 60)
+          if (const double s = growth_fraction(crystals[k], p); s <= 1.0 && crystals[k].from + s * 0.6 < first_t) {
+            first_t = crystals[k].from + s * 0.6;
+            first = k;
+          }
+        if (first < 0) continue;
+        ++covered;
+        ASSERT_EQ(o, first) << capped << " at " << p.x << "," << p.y;
+      }
+    EXPECT_GT(covered, 300) << capped;  // the five cover 423 of the 14 400 points
+  }
+}
+
 // An early crystal keeps its free-growth faces where nothing impinged: a lone crystal owns exactly
 // the section of its polyhedron (gauge ≤ 1), so its outline is straight faces.
 TEST(GrownTiling, ALoneCrystalOwnsTheSectionOfItsPolyhedron) {

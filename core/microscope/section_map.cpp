@@ -574,9 +574,12 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, Habi
   if (const auto& gw = growth_json) {
     GrainGrowth growth;
     growth.nucleus_mm = {g.centre_mm.x, g.centre_mm.y, gw->get_or("nucleus_z_mm", 0.0)};
-    growth.from = gw->require<double>("from");
-    growth.to = gw->require<double>("to");
+    // Times of order 1, as the texture engine writes them: a porphyroblast's lead (arrival_time,
+    // grown_tiling.cpp) must exceed any time span.
+    growth.from = gw->require<double>("from", Range::closed(-100, 100));
+    growth.to = gw->require<double>("to", Range::closed(-100, 100));
     if (!(growth.to > growth.from)) gw->fail("to", "growth must end after it starts (to > from)");
+    growth.overgrows = gw->get_or("overgrows", false);
     // A ball: its neighbours alone bound it (crystal_polyhedron.h).
     growth.shape = ball ? sphere_polyhedron(size) : placed(templates.get(has_lattice ? mc : nullptr, aspect), L, size);
     g.growth = growth;

@@ -25,10 +25,17 @@ double growth_fraction(const GrainGrowth& g, const glm::dvec2& p) {
   return gauge(g.shape, glm::dvec3(p.x - g.nucleus_mm.x, p.y - g.nucleus_mm.y, -g.nucleus_mm.z));
 }
 
+double arrival_time(const GrainGrowth& g, double s) {
+  // Growth times lie in [0, 1] (rock_growth.cpp) and section files keep to > from; a lead of 10³
+  // is beyond any time a crystal that does not overgrow reaches a point at.
+  constexpr double kOvergrowthLead = 1e3;
+  return g.from + s * (g.to - g.from) - (g.overgrows && s <= 1.0 ? kOvergrowthLead : 0.0);
+}
+
 double GrownTiling::arrival(int i, const glm::dvec2& p) const {
   const GrainGrowth& g = crystals_[i];
   const double s = growth_fraction(g, p);
-  return capped_ && s > 1.0 ? kInf : g.from + s * (g.to - g.from);
+  return capped_ && s > 1.0 ? kInf : arrival_time(g, s);
 }
 
 int GrownTiling::owner_exhaustive(const glm::dvec2& p) const {
@@ -84,10 +91,11 @@ void GrownTiling::window(int i, double s_reach, const glm::dvec2& origin, NodeWi
     for (int x = w.x0; x <= w.x1 + 1; ++x) w.s[k++] = growth_fraction(g, origin + cell_mm_ * glm::dvec2(x, y));
 }
 
-// Upper bounds per cell: arrival is convex in p (a gauge is convex), so its maximum over a cell
-// is at a corner; each crystal offers the largest of its four corner arrivals to every cell its
-// free-growth section covers (with a matrix; kUncappedCover times it without). Crystals in
-// parallel, each thread its own bounds, then their minimum: the same bounds in any order.
+// Upper bounds per cell: arrival is quasi-convex in p (a nondecreasing function of a convex
+// gauge), so its maximum over a cell is at a corner; each crystal offers the largest of its four
+// corner arrivals to every cell its free-growth section covers (with a matrix; kUncappedCover
+// times it without). Crystals in parallel, each thread its own bounds, then their minimum: the
+// same bounds in any order.
 std::vector<double> GrownTiling::cell_upper_bounds(const glm::dvec2& origin) const {
   const std::size_t cells = static_cast<std::size_t>(cells_x_) * cells_y_;
   tbb::enumerable_thread_specific<std::vector<double>> local([cells] { return std::vector<double>(cells, kInf); });
@@ -102,7 +110,7 @@ std::vector<double> GrownTiling::cell_upper_bounds(const glm::dvec2& origin) con
         for (int x = w.x0; x <= w.x1; ++x) {
           const double s = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
           if (s > s_cover) continue;  // the section of its shape grown that far does not cover this cell
-          const double t = g.from + s * (g.to - g.from);
+          const double t = arrival_time(g, s);
           double& u = upper[static_cast<std::size_t>(y) * cells_x_ + x];
           u = std::min(u, t + 1e-9 * (std::abs(t) + 1.0));  // rounding margin
         }
@@ -123,8 +131,10 @@ void GrownTiling::candidate_cells(int i, const glm::dvec2& origin, const std::ve
                                   NodeWindow& w, std::vector<std::pair<int, int>>& out) const {
   const GrainGrowth& g = crystals_[i];
   const double span = g.to - g.from, R = g.shape.circumradius_mm, diag = cell_mm_ * std::sqrt(2.0);
-  // Without a matrix growth goes on past `to`, up to where it passes every cell's upper bound.
-  const double s_reach = capped_ ? 1.0 : (u_max == kInf ? 1e6 : std::max(0.0, (u_max - g.from) / span));
+  // Without a matrix growth goes on past `to`, up to where it passes every cell's upper bound
+  // (an overgrowing crystal's whole free-growth shape at least: its lead ends at s = 1).
+  const double s_beyond = u_max == kInf ? 1e6 : std::max(0.0, (u_max - g.from) / span);
+  const double s_reach = capped_ ? 1.0 : (g.overgrows ? std::max(1.0, s_beyond) : s_beyond);
   window(i, s_reach, origin, w);
   const double h_min = *std::min_element(g.shape.support_mm.begin(), g.shape.support_mm.end());
   for (int y = w.y0; y <= w.y1; ++y)
@@ -135,7 +145,7 @@ void GrownTiling::candidate_cells(int i, const glm::dvec2& origin, const std::ve
       const double corner = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
       const double s_low = std::max(std::sqrt(dx * dx + dy * dy + g.nucleus_mm.z * g.nucleus_mm.z) / R, corner - diag / h_min);
       if (capped_ && s_low > 1.0 + 1e-9) continue;
-      const double lower = g.from + span * s_low;
+      const double lower = arrival_time(g, s_low);
       const int c = y * cells_x_ + x;
       if (lower - 1e-9 * (std::abs(lower) + 1.0) <= upper[static_cast<std::size_t>(c)]) out.emplace_back(c, i);
     }

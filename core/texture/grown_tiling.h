@@ -24,11 +24,22 @@ struct GrainGrowth {
   glm::dvec3 nucleus_mm{0.0};  // z: height above the section plane
   double from = 0.0, to = 1.0;
   CrystalPolyhedron shape;  // at time `to`
+  // A porphyroblast grows in a rock that is already crystalline, replacing the matrix grains in
+  // its way (Passchier & Trouw 2005, Microtectonics, §7.2; Vernon 2004, A Practical Guide to Rock
+  // Microstructure, §5.2): inside its free-growth shape it owns every point that no other
+  // overgrowing crystal reaches first, whenever the matrix crystals got there.
+  bool overgrows = false;
 };
 
 // Growth fraction s at which the crystal's faces reach section point p (the gauge of its shape
 // about the nucleus: s ≤ 1 while it grows); the time they get there is from + s·(to − from).
 double growth_fraction(const GrainGrowth& g, const glm::dvec2& p_mm);
+
+// The time that decides ownership at growth fraction s: from + s·(to − from), less a lead that
+// puts an overgrowing crystal's free-growth shape (s ≤ 1) before every crystal that does not
+// overgrow. Nondecreasing in s, so quasi-convex in p (a gauge is convex): over a cell its
+// maximum is at a corner, as the lookup grid's bounds need.
+double arrival_time(const GrainGrowth& g, double s);
 
 class GrownTiling {
  public:

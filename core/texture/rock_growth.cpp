@@ -185,7 +185,8 @@ GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crys
   for (std::size_t i = 0; i < crystals.size(); ++i) {
     const GrownCrystal& c = crystals[i];
     g[i] = {c.nucleus_mm, c.from, 1.0,
-            r.granoblastic ? sphere_polyhedron(c.size_mm) : placed(models[c.phase].unit, crystal_frame(c), c.size_mm)};
+            r.granoblastic ? sphere_polyhedron(c.size_mm) : placed(models[c.phase].unit, crystal_frame(c), c.size_mm),
+            r.phases[c.phase].porphyroblast};
   }
   return GrownTiling(std::move(g), !r.matrix_mineral.empty(), r.width_mm, r.height_mm);
 }
@@ -436,6 +437,7 @@ void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uin
                         {"euler_deg", {c.euler_deg[0], c.euler_deg[1], c.euler_deg[2]}},
                         {"growth", {{"nucleus_z_mm", c.nucleus_mm.z}, {"from", c.from}, {"to", 1.0}}}};
     if (r.granoblastic || ph.rounded) j["growth"]["shape"] = "sphere";
+    if (ph.porphyroblast) j["growth"]["overgrows"] = true;
     if (ph.aspect) j["aspect"] = *ph.aspect;
     if (ph.zoning) j["zones"] = zones_json(ph);
     if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};

@@ -43,7 +43,7 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
 }
 
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "alteration", "inclusions", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -66,6 +66,8 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
   if (p.rounded && granoblastic) pr.fail("shape", "a granoblastic rock's grains are shaped by their neighbours");
   if (p.rounded && p.aspect) pr.fail("aspect", "a rounded grain is a ball: it has no aspect");
   if (p.rounded && pr.has("fabric")) pr.fail("fabric", "a rounded grain (a ball) has no axis to align");
+  p.porphyroblast = pr.get_or("porphyroblast", false);
+  if (p.porphyroblast && granoblastic) pr.fail("porphyroblast", "a granoblastic rock's grains recrystallised together");
   if (const auto z = pr.optional_object("zoning")) {
     ZoningRecipe zr;
     const std::string kind = z->require<std::string>("kind");

@@ -12,6 +12,7 @@
 //                "nucleation": 0.0,          (when the phase begins, 0 … 1 of the cooling time)
 //                "aspect": 3,                (optional; the mineral's default otherwise)
 //                "shape": "habit|rounded",   (optional: "rounded" detrital grains are balls)
+//                "porphyroblast": true,      (optional: grows over the matrix it meets)
 //                "zoning": {"kind": "oscillatory|normal", "core": 60, "rim": 40,
 //                           "amplitude": 6, "bands": 12},          (optional; composition numbers)
 //                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
@@ -112,6 +113,9 @@ struct PhaseRecipe {
   // Detrital grains rounded by transport: balls of the CSD's sizes instead of the habit polyhedron
   // (a sandstone's framework; with a matrix, the pores between them).
   bool rounded = false;
+  // A porphyroblast replaces the matrix grains in its way (grown_tiling.h, GrainGrowth::overgrows):
+  // its free-growth shape is its own, whatever matrix crystal nucleated inside it.
+  bool porphyroblast = false;
   std::optional<ZoningRecipe> zoning;
   std::optional<TwinRecipe> twin;
   std::optional<FabricRecipe> fabric;
