@@ -1,0 +1,72 @@
+#pragma once
+// A conoscopic figure's response to the polars and the stage (issue 21): rendered once, composed
+// at any stage angle, polarizer and analyzer setting in a few multiply-adds a pixel.
+//
+// Per back-focal-plane point the image is linear in the polarizer's and in the analyzer's Stokes
+// vectors (docs/physics.md, "One response, many settings"): with ideal linear polars at ψ and α,
+// p(ψ) = (1, cos 2ψ, sin 2ψ) and a(α) = (1, cos 2α, sin 2α),
+//   XYZ(ψ, α) = a(α)ᵀ · N · p(ψ),   N a 3 × 3 block for each of X, Y and Z,
+// the band sum Σ_b W_b of the objective · specimen · condenser Mueller matrices (V never enters:
+// no retarder outside the specimen). Nine renders of the figure with the polars at 0°, 45° and
+// 90° each ("probes") fix N: p(0°), p(45°), p(90°) are independent, so any p(ψ) is
+// c0·p(0°) + c1·p(45°) + c2·p(90°) with c1 = sin 2ψ, c0,2 = (1 − sin 2ψ ± cos 2ψ)/2, and the
+// image at (ψ, α) is Σ_ij d_i c_j · probe_ij. The analyzer out passes the whole intensity,
+// a(0°) + a(90°) = (2, 0, 0): d = (1, 0, 1).
+//
+// The stage: objective, condenser and Bertrand lens are figures of revolution about the axis, so
+// turning the specimen by θ is turning the polars by −θ and the figure by θ — a pixel at
+// back-focal-plane point f shows the stage-0 response at R(−θ)·f (sample_from_field), read by
+// Keys' cubic, with the polars at ψ − θ and α − θ. The lit disc is centred, so it maps onto
+// itself; grid points just outside it hold their nearest lit neighbour's value, so the cubic's
+// taps at the rim read no black.
+//
+// Where it does not hold: an accessory, whose retardance sits inside the band sum between the
+// specimen and the analyzer (a gypsum plate or wedge in the slot: figure_response_applies is
+// false and the figure is rendered afresh).
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/microscope/scene.h"
+#include "core/render/render_image.h"
+#include "core/specimen/specimen_response.h"
+
+namespace pmsim {
+
+// Polar angles of the probes (specimen frame, stage 0°), degrees.
+inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
+
+// Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
+// conoscopic mode, no accessory in the slot.
+bool figure_response_applies(const Scene& scene);
+
+struct FigureResponse {
+  int width = 0, height = 0;
+  bool monochromatic = false;  // render.single_wavelength_nm: R = G = B = Y
+  // Per pixel, probe (i: analyzer, j: polarizer) at 3·(3·i + j): 27 floats of XYZ; unlit pixels
+  // next to the disc hold their nearest lit neighbour (the cubic's reach).
+  std::vector<float> probes;
+  std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant)
+  // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
+  // read nearest-neighbour; empty when there is none.
+  std::vector<float> outside;
+  // The spectral level the probes were rendered at, and the convergence of the figure's own
+  // render at the scene's settings (what every composed image carries).
+  int wavelengths = 0;
+  RenderImage progress;  // passes, error_estimate, converged, stopped, model_report (no pixels)
+  double time_ms = 0.0;  // the whole response: the figure's render and its nine probes
+};
+
+// Renders the figure at the scene's settings to convergence (its image goes to `progress`, as a
+// fresh render's would), then the nine probes at that render's spectral level. nullopt when
+// `cancel` is raised between renders. `threads` as ProgressiveRenderer::render's.
+std::optional<FigureResponse> render_figure_response(const Scene& scene, int threads = 0,
+                                                     const std::function<void(const RenderImage&)>& progress = nullptr,
+                                                     const std::atomic<bool>* cancel = nullptr);
+
+// The figure at `instrument` (its compensator must be none): XYZ and linear sRGB.
+RenderImage compose_figure(const FigureResponse& response, const InstrumentSettings& instrument);
+
+}  // namespace pmsim
