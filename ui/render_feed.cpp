@@ -30,9 +30,10 @@ RenderFeed::~RenderFeed() {
 void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
   {
     std::lock_guard<std::mutex> lock(mu_);
-    // Only the instrument changed on a traced specimen: the response serves it as it is.
-    if (grains_mode_ && !busy_ && !pending_ && applied_id_ == submitted_id_ &&
-        same_specimen_response(traced_scene_, scene)) {
+    // Only the instrument changed on a traced specimen or a figure: the response serves it as it is.
+    if (composing() && !busy_ && !pending_ && applied_id_ == submitted_id_ &&
+        (grains_mode_ ? same_specimen_response(traced_scene_, scene)
+                      : figure_response_applies(scene) && same_specimen_response(figure_scene_, scene))) {
       instrument_ = instrument_settings(scene);
       ++instrument_version_;
       grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
@@ -94,6 +95,8 @@ void RenderFeed::run() {
     } else {
       applied_id_ = id;
       grains_mode_ = grains;
+      figure_mode_ = false;
+      figure_.reset();
       if (grains) {
         grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
         grain_running_ = true;
@@ -115,8 +118,40 @@ void RenderFeed::run() {
       lock.lock();
       grain_running_ = false;
       cv_.notify_all();
+    } else if (!failed && figure_response_applies(scene)) {
+      lock.unlock();
+      render_figure(scene, id);
+      lock.lock();
     }
   }
+}
+
+void RenderFeed::render_figure(const Scene& scene, std::uint64_t id) {
+  // The renderer's own render first: its first images come in milliseconds, and its converged
+  // level is the probes' (a newer submission, which raises grain_cancel_, ends the wait).
+  RenderImage own;
+  for (;;) {
+    if (grain_cancel_.load()) return;
+    if (renderer_.wait(0.02)) break;
+  }
+  if (!renderer_.snapshot(own) || own.stopped.empty()) return;
+  std::optional<FigureResponse> figure;
+  try {
+    tbb::task_arena arena(threads_ > 0 ? threads_ : static_cast<int>(tbb::task_arena::automatic));
+    arena.execute([&] { figure = render_figure_probes(scene, own, threads_, &grain_cancel_); });
+  } catch (const std::exception&) {
+    return;  // the renderer rendered this scene: the figure stays the renderer's
+  }
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!figure || pending_ || busy_ || applied_id_ != id || submitted_id_ != id) return;
+  figure_ = std::make_shared<const FigureResponse>(std::move(*figure));
+  figure_scene_ = scene;
+  figure_mode_ = true;
+  instrument_ = instrument_settings(scene);
+  ++instrument_version_;
+  ++response_version_;
+  grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
+  cv_.notify_all();
 }
 
 void RenderFeed::render_grains(const Scene& scene, std::uint64_t) {
@@ -152,16 +187,16 @@ void RenderFeed::compose_loop() {
   std::unique_lock<std::mutex> lock(mu_);
   for (;;) {
     cv_.wait(lock, [&] {
-      return quit_ ||
-             (grains_mode_ && response_latest_.response &&
-              (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
+      return quit_ || (((grains_mode_ && response_latest_.response) || (figure_mode_ && figure_)) &&
+                       (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
     });
     if (quit_) return;
     const ResponseProgress progress = response_latest_;  // shares the immutable response
+    const std::shared_ptr<const FigureResponse> figure = figure_mode_ ? figure_ : nullptr;
     const InstrumentSettings instrument = instrument_;
     const std::uint64_t rv = response_version_, iv = instrument_version_, generation = grain_generation_;
     lock.unlock();
-    RenderImage img = compose_progress(progress, instrument);
+    RenderImage img = figure ? compose_figure(*figure, instrument) : compose_progress(progress, instrument);
     img.generation = generation;
     lock.lock();
     composed_ = std::move(img);
@@ -181,7 +216,7 @@ std::optional<RenderFeed::Failure> RenderFeed::take_failure() {
 bool RenderFeed::snapshot(RenderImage& out, bool& current) const {
   {
     std::lock_guard<std::mutex> lock(mu_);
-    if (grains_mode_) {
+    if (composing()) {
       const bool changed =
           composed_.width > 0 && (out.generation != composed_.generation || out.passes != composed_.passes ||
                                   out.width != composed_.width || out.stopped != composed_.stopped);
@@ -203,6 +238,16 @@ bool RenderFeed::wait(double timeout_s) const {
   {
     std::unique_lock<std::mutex> lock(mu_);
     if (!cv_.wait_until(lock, deadline, [&] { return quit_ || (!busy_ && !pending_); })) return false;
+    if (figure_mode_) {
+      // Composed from the figure's response: done when the newest settings are composed.
+      if (!cv_.wait_until(lock, deadline, [&] {
+            return quit_ || pending_ || !figure_mode_ ||
+                   (composed_response_ == response_version_ && composed_instrument_ == instrument_version_);
+          }))
+        return false;
+      if (figure_mode_ && !pending_) return true;
+      // Otherwise a newer scene took over: wait for it below, as for any other.
+    }
     if (grains_mode_) {
       if (!cv_.wait_until(lock, deadline, [&] { return quit_ || pending_ || !grain_running_; })) return false;
       // Rendered: stopped at the tolerance or at its cap (the image says which).

@@ -16,6 +16,11 @@
 // more while the response is still being traced beside it) and snapshot() takes the newest
 // composed image, so the UI thread never waits for a composition and every image of a stage drag
 // shows its angle's colours at the response's convergence.
+// A conoscopic figure without an accessory (figure_response_applies) is rendered by the
+// progressive renderer first; once that has converged, the feeder thread renders its nine probes
+// (core/specimen/figure_response.h, ~10 renders' work) and from then on a submission that changes
+// only the stage or the polars is composed from them by the composer thread, as a traced
+// specimen's. Any other change drops the figure's response and restarts the renderer.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -26,6 +31,7 @@
 #include <thread>
 
 #include "core/render/progressive_renderer.h"
+#include "core/specimen/figure_response.h"
 #include "core/specimen/forward_response.h"
 
 namespace pmsim::ui {
@@ -57,6 +63,8 @@ class RenderFeed {
   void run();
   void compose_loop();  // the composer thread
   void render_grains(const Scene& scene, std::uint64_t generation);  // on the feeder thread, unlocked
+  void render_figure(const Scene& scene, std::uint64_t id);          // on the feeder thread, unlocked
+  bool composing() const { return grains_mode_ || figure_mode_; }    // snapshots come from the composer
 
   // Worker threads of both renderers (the app's --threads; 0: all cores).
   const int threads_;
@@ -82,6 +90,11 @@ class RenderFeed {
   InstrumentSettings instrument_;          // the newest submission's settings
   std::uint64_t instrument_version_ = 0;   // bumps with every instrument-only submission
   RenderImage composed_;                   // the response composed at instrument_
+  // The conoscopic figure's response (figure mode), for figure_scene_; its images carry
+  // kGrainGeneration-tagged generations as the traced path's.
+  bool figure_mode_ = false;
+  std::shared_ptr<const FigureResponse> figure_;
+  Scene figure_scene_;
   std::uint64_t composed_response_ = ~0ull, composed_instrument_ = ~0ull;
   std::atomic<bool> grain_cancel_{false};
   // Until this steady-clock time (ns) the response tracer holds (an instrument change was just

@@ -80,15 +80,24 @@ std::optional<FigureResponse> render_figure_response(const Scene& scene, int thr
                                                      const std::function<void(const RenderImage&)>& progress,
                                                      const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
+  // The figure at the scene's own settings, as a fresh render: the level it converges at is the
+  // level every probe is rendered at.
+  const RenderImage own =
+      ProgressiveRenderer::render(scene, threads, progress ? progress : [](const RenderImage&) {});
+  if (cancel && cancel->load()) return std::nullopt;
+  std::optional<FigureResponse> r = render_figure_probes(scene, own, threads, cancel);
+  if (r) r->time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads,
+                                                   const std::atomic<bool>* cancel) {
+  const auto t0 = std::chrono::steady_clock::now();
   const auto cancelled = [&] { return cancel && cancel->load(); };
   FigureResponse r;
   r.width = scene.render.width;
   r.height = scene.render.height;
   r.monochromatic = scene.render.single_wavelength_nm > 0;
-  // The figure at the scene's own settings, as a fresh render: the level it converges at is the
-  // level every probe is rendered at.
-  RenderImage own = ProgressiveRenderer::render(scene, threads, progress ? progress : [](const RenderImage&) {});
-  if (cancelled()) return std::nullopt;
   r.wavelengths = own.wavelengths;
   r.progress = own;
   r.progress.rgb.clear();

@@ -56,7 +56,7 @@ struct FigureResponse {
   // render at the scene's settings (what every composed image carries).
   int wavelengths = 0;
   RenderImage progress;  // passes, error_estimate, converged, stopped, model_report (no pixels)
-  double time_ms = 0.0;  // the whole response: the figure's render and its nine probes
+  double time_ms = 0.0;  // render_figure_response: the figure's render and its probes; render_figure_probes: the probes
 };
 
 // Renders the figure at the scene's settings to convergence (its image goes to `progress`, as a
@@ -65,6 +65,11 @@ struct FigureResponse {
 std::optional<FigureResponse> render_figure_response(const Scene& scene, int threads = 0,
                                                      const std::function<void(const RenderImage&)>& progress = nullptr,
                                                      const std::atomic<bool>* cancel = nullptr);
+
+// The probes alone, given the figure's own converged render at the scene's settings (`own`: its
+// spectral level and convergence; the app has it from its progressive renderer already).
+std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads = 0,
+                                                   const std::atomic<bool>* cancel = nullptr);
 
 // The figure at `instrument` (its compensator must be none): XYZ and linear sRGB.
 RenderImage compose_figure(const FigureResponse& response, const InstrumentSettings& instrument);
