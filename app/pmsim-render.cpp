@@ -9,7 +9,9 @@
 // --sweep renders one frame per value of an instrument key (stage_deg, polarizer_deg,
 // analyzer_deg, compensator_position) into the numbered files of --out (one printf integer
 // field); a traced specimen's response is traced once and composed at every value
-// (core/specimen/specimen_response.h). --progress (or a terminal on stderr): a progress line.
+// (core/specimen/specimen_response.h), and a conoscopic figure without an accessory is rendered
+// once with its nine probes and composed at every stage angle and polar setting
+// (core/specimen/figure_response.h). --progress (or a terminal on stderr): a progress line.
 // Bad input: a message naming file, key and value on stderr, exit code 2, no output file.
 #include <unistd.h>
 
@@ -47,6 +49,7 @@
 #include "core/microscope/section_map.h"
 #include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
+#include "core/specimen/figure_response.h"
 #include "core/scene3d/scene3d_render.h"
 #include "core/specimen/becke_probe.h"
 #include "core/specimen/forward_response.h"
@@ -489,6 +492,27 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
                       {"stopped", response->stopped},
                       {"model_report", r.model_report}};
   }
+  // A conoscopic figure without an accessory: its nine probes serve every stage angle and polar
+  // setting (core/specimen/figure_response.h).
+  bool one_figure = !one_response && pmsim::figure_response_applies(frames[0]);
+  for (const pmsim::Scene& f : frames)
+    one_figure = one_figure && pmsim::figure_response_applies(f) && pmsim::same_specimen_response(frames[0], f);
+  std::optional<pmsim::FigureResponse> figure;
+  if (one_figure) {
+    progress.begin("figure response", frames[0].render.tolerance_de2000, progress_cap(frames[0]));
+    figure = pmsim::render_figure_response(frames[0], 0, progress_callback(progress, frames[0]));
+    progress.end();
+    if (!figure) throw std::runtime_error("the figure's response was not rendered");
+    const pmsim::RenderImage& own = figure->progress;
+    response_stats = {{"coverage", "figure"},
+                      {"time_ms", figure->time_ms},
+                      {"wavelengths", figure->wavelengths},
+                      {"passes", own.passes},
+                      {"error_estimate", own.error_estimate ? nlohmann::json(*own.error_estimate) : nlohmann::json()},
+                      {"converged", own.converged},
+                      {"stopped", own.stopped},
+                      {"model_report", own.model_report}};
+  }
   bool all_converged = true, all_tolerance = true, any_unknown = false;
   double worst = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -498,6 +522,9 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
     pmsim::RenderImage img;
     if (response) {
       img = pmsim::compose_progress(*response, pmsim::instrument_settings(f));
+      progress.note(label + ": composed");
+    } else if (figure) {
+      img = pmsim::compose_figure(*figure, pmsim::instrument_settings(f));
       progress.note(label + ": composed");
     } else {
       progress.begin(label, f.render.tolerance_de2000, progress_cap(f));
@@ -523,7 +550,7 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
     nlohmann::json stats;
     stats["sweep"] = {{"key", sw.key}, {"start", sw.start}, {"stop", sw.stop}, {"step", sw.step}, {"frames", n}};
     stats["time_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (response) {
+    if (response || figure) {
       // Every frame carries the response's estimate and stop.
       stats["error_estimate"] = response_stats["error_estimate"];
       stats["converged"] = response_stats["converged"];
