@@ -380,7 +380,8 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
     const std::string sc = "calcite-1mm-cono";
     const BenchRow* best = nullptr;
     for (const BenchRow& r : rep.rows)
-      if (r.scene == sc && r.mean_de2000 <= 1.0 && r.code == "product" &&
+      // A composed frame costs milliseconds only once the figure's response exists: not a render.
+      if (r.scene == sc && r.mean_de2000 <= 1.0 && r.code == "product" && r.strategy != "stage-drag-composed" &&
           (!best || r.time_ms < best->time_ms))
         best = &r;
     const BenchRow* u81 = find_row(rep, sc, "uniform-81");
@@ -419,8 +420,9 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
                   (r->time_ms <= 16 ? " (MET)" : " (" + fmt("%.1f×", r->time_ms / 16.0) + " away)"));
   // Stage drag (issue 14): a converged figure on every frame at 60 Hz.
   for (const BenchRow& r : rep.rows)
-    if (r.strategy == "stage-drag")
-      out.push_back("stage drag " + r.scene + ": mean frame to converged " + fmt("%.1f ms", r.time_ms) +
+    if (r.strategy == "stage-drag" || r.strategy == "stage-drag-composed")
+      out.push_back((r.strategy == "stage-drag" ? "stage drag " : "stage drag composed from the figure's response ") +
+                    r.scene + ": mean frame to converged " + fmt("%.1f ms", r.time_ms) +
                     idle(r) + ", last frame ΔE " + fmt("%.2f", r.mean_de2000) +
                     (r.time_ms <= 16 && r.mean_de2000 <= 1 ? " (≤ 16 ms: MET)"
                                                             : " (" + fmt("%.1f×", r.time_ms / 16.0) + " of 16 ms)"));

@@ -17,6 +17,7 @@ enum class StrategyKind {
   FirstPass,     // the first progressive pass of ProgressiveRenderer (interactive preview)
   SecondPass,    // its second pass (for a large field: the 1/4-resolution preview after the glance)
   StageDrag,     // a scripted stage drag: each frame's restart waited on to its converged image
+  FigureDrag,    // the same drag composed from the figure's response (figure_response.h)
   Rgb,           // bench-side: 3 wavelengths (610, 550, 465 nm) as the linear sRGB channels
   Stratified,    // bench-side: n strata of 400/n nm, one jittered wavelength each, per unit
   Hero,          // bench-side: hero wavelength + n−1 equally spaced companions, per unit
@@ -30,7 +31,7 @@ struct BenchStrategy {
   int wavelengths = 0;                // bench-side sample count
   bool product() const {
     return kind == StrategyKind::Product || kind == StrategyKind::FirstPass ||
-           kind == StrategyKind::SecondPass || kind == StrategyKind::StageDrag;
+           kind == StrategyKind::SecondPass || kind == StrategyKind::StageDrag || kind == StrategyKind::FigureDrag;
   }
 };
 
