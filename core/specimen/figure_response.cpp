@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include <glm/mat3x3.hpp>
 #include <tbb/parallel_for.h>
 
 #include "core/base/conventions.h"
@@ -20,7 +21,7 @@ bool figure_response_applies(const Scene& scene) {
 
 namespace {
 
-constexpr int kProbeFloats = 27;  // 9 probes × XYZ
+constexpr int kProbeFloats = 27;  // 9 probes × XYZ: planes of FigureResponse::probes
 
 // Weights c of p(ψ) = Σ_j c_j p(kFigureProbeDeg[j]), p(ψ) = (1, cos 2ψ, sin 2ψ) (the header).
 std::array<double, 3> probe_weights(double angle_rad) {
@@ -60,18 +61,19 @@ void fill_rim(FigureResponse& r, double lit_radius) {
         if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
         const std::size_t j = static_cast<std::size_t>(sy) * W + sx;
         if (!r.lit[j]) continue;
-        std::copy_n(&r.probes[j * kProbeFloats], kProbeFloats, &r.probes[i * kProbeFloats]);
+        const std::size_t n = static_cast<std::size_t>(W) * H;
+        for (int k = 0; k < kProbeFloats; ++k) r.probes[k * n + i] = r.probes[k * n + j];
         break;
       }
     }
 }
 
 // Keys' cubic convolution kernel, a = −0.5 (Keys 1981, IEEE TASSP 29(6), eq. 15).
-double keys(double t) {
+float keys(float t) {
   t = std::abs(t);
-  if (t <= 1.0) return (1.5 * t - 2.5) * t * t + 1.0;
-  if (t < 2.0) return ((-0.5 * t + 2.5) * t - 4.0) * t + 2.0;
-  return 0.0;
+  if (t <= 1.0f) return (1.5f * t - 2.5f) * t * t + 1.0f;
+  if (t < 2.0f) return ((-0.5f * t + 2.5f) * t - 4.0f) * t + 2.0f;
+  return 0.0f;
 }
 
 }  // namespace
@@ -116,18 +118,70 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
       if (cancelled()) return std::nullopt;
       const int k = 3 * i + j;
       for (std::size_t p = 0; p < n; ++p)
-        for (int c = 0; c < 3; ++c) r.probes[p * kProbeFloats + 3 * k + c] = probe.xyz[3 * p + c];
+        for (int c = 0; c < 3; ++c) r.probes[(3 * k + c) * n + p] = probe.xyz[3 * p + c];
     }
   r.lit = figure_disc(scene);
   bool light_outside = false;
   for (std::size_t p = 0; p < n && !light_outside; ++p)
     if (!r.lit[p])
-      for (int k = 0; k < kProbeFloats; ++k) light_outside = light_outside || r.probes[p * kProbeFloats + k] != 0.0f;
+      for (int k = 0; k < kProbeFloats; ++k) light_outside = light_outside || r.probes[k * n + p] != 0.0f;
   if (light_outside) r.outside = r.probes;
   fill_rim(r, std::min(1.0, scene.condenser.na / scene.objective.na));
   r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
+
+namespace {
+
+// The probes contracted with the frame's nine weights: the X, Y and Z planes of the figure at
+// these polars, stage 0° (each a sum of nine contiguous planes: the loop vectorises).
+std::array<std::vector<float>, 3> contract_grid(const FigureResponse& r, const std::array<float, 9>& w) {
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  std::array<std::vector<float>, 3> grid;
+  for (auto& g : grid) g.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& b) {
+    for (int c = 0; c < 3; ++c) {
+      float* out = grid[c].data();
+      std::fill(out + b.begin(), out + b.end(), 0.0f);
+      for (int k = 0; k < 9; ++k) {
+        const float* plane = &r.probes[(3 * k + c) * n];
+        const float wk = w[k];
+        for (std::size_t p = b.begin(); p != b.end(); ++p) out[p] += wk * plane[p];
+      }
+    }
+  });
+  return grid;
+}
+
+// Keys' cubic reading of the planes at grid coordinates (gx, gy); indices are clamped at the
+// border only where the 4 × 4 taps cross it.
+glm::vec3 cubic_at(const std::array<std::vector<float>, 3>& grid, int W, int H, float gx, float gy) {
+  const float fx = std::floor(gx), fy = std::floor(gy);
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  float wx[4], wy[4];
+  for (int t = 0; t < 4; ++t) {
+    wx[t] = static_cast<float>(keys(gx - fx + 1.0f - t));
+    wy[t] = static_cast<float>(keys(gy - fy + 1.0f - t));
+  }
+  int xs[4], ys[4];
+  const bool inside = x0 >= 1 && y0 >= 1 && x0 + 2 < W && y0 + 2 < H;
+  for (int t = 0; t < 4; ++t) {
+    xs[t] = inside ? x0 - 1 + t : std::clamp(x0 - 1 + t, 0, W - 1);
+    ys[t] = inside ? y0 - 1 + t : std::clamp(y0 - 1 + t, 0, H - 1);
+  }
+  glm::vec3 v(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    float sum = 0.0f;
+    for (int ty = 0; ty < 4; ++ty) {
+      const float* g = grid[c].data() + static_cast<std::size_t>(ys[ty]) * W;
+      sum += wy[ty] * (wx[0] * g[xs[0]] + wx[1] * g[xs[1]] + wx[2] * g[xs[2]] + wx[3] * g[xs[3]]);
+    }
+    v[c] = sum;
+  }
+  return v;
+}
+
+}  // namespace
 
 RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in) {
   const int W = r.width, H = r.height;
@@ -138,56 +192,46 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   std::array<float, 9> w{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) w[3 * i + j] = static_cast<float>(d[i] * c[j]);
-  const auto contract = [&](const std::vector<float>& probes, std::size_t p) {
-    const float* q = &probes[p * kProbeFloats];
-    glm::dvec3 v(0.0);
-    for (int k = 0; k < 9; ++k) v += static_cast<double>(w[k]) * glm::dvec3(q[3 * k], q[3 * k + 1], q[3 * k + 2]);
-    return v;
-  };
-  const std::size_t n = static_cast<std::size_t>(W) * H;
   // The figure at these polars, stage 0°, at every grid point; then read turned by the stage.
-  std::vector<glm::dvec3> grid(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& b) {
-    for (std::size_t p = b.begin(); p != b.end(); ++p) grid[p] = contract(r.probes, p);
-  });
+  const std::array<std::vector<float>, 3> grid = contract_grid(r, w);
+  const std::size_t n = static_cast<std::size_t>(W) * H;
   RenderImage img = r.progress;
   img.width = W;
   img.height = H;
-  img.rgb.assign(n * 3, 0.0f);
-  img.xyz.assign(n * 3, 0.0f);
+  img.rgb.resize(n * 3);
+  img.xyz.resize(n * 3);
   const StageToSample turn(degrees(theta));
   const double half = 0.5 * std::min(W, H);
+  glm::mat3 to_rgb;  // XYZ → linear sRGB, in float (columns: the images of X, Y, Z)
+  for (int k = 0; k < 3; ++k) to_rgb[k] = glm::vec3(xyz_to_linear_srgb(glm::dvec3(k == 0, k == 1, k == 2)));
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      // Grid coordinates of the row's pixels: linear in x (pixel centre (x + 0.5, y + 0.5)).
+      const glm::dvec2 g0 = turn(field_from_pixel(W, H, 0.5, y + 0.5)), g1 = turn(field_from_pixel(W, H, 1.5, y + 0.5));
+      const double gx0 = g0.x * half + 0.5 * W - 0.5, gy0 = 0.5 * H - g0.y * half - 0.5;
+      const double dgx = (g1.x - g0.x) * half, dgy = -(g1.y - g0.y) * half;
       for (int x = 0; x < W; ++x) {
         const std::size_t o = static_cast<std::size_t>(y) * W + x;
-        const glm::dvec2 g = turn(field_from_pixel(W, H, x + 0.5, y + 0.5));
-        const double gx = g.x * half + 0.5 * W - 0.5, gy = 0.5 * H - g.y * half - 0.5;  // grid coordinates
-        glm::dvec3 v(0.0);
+        const double gx = gx0 + x * dgx, gy = gy0 + x * dgy;
+        glm::vec3 v(0.0f);
         if (r.lit[o]) {
-          const int x0 = static_cast<int>(std::floor(gx)), y0 = static_cast<int>(std::floor(gy));
-          double wx[4], wy[4];
-          for (int t = 0; t < 4; ++t) {
-            wx[t] = keys(gx - (x0 - 1 + t));
-            wy[t] = keys(gy - (y0 - 1 + t));
-          }
-          for (int ty = 0; ty < 4; ++ty) {
-            const int yy = std::clamp(y0 - 1 + ty, 0, H - 1);
-            glm::dvec3 row(0.0);
-            for (int tx = 0; tx < 4; ++tx) row += wx[tx] * grid[static_cast<std::size_t>(yy) * W + std::clamp(x0 - 1 + tx, 0, W - 1)];
-            v += wy[ty] * row;
-          }
-          v = glm::max(v, glm::dvec3(0.0));  // the cubic's overshoot at an isogyre's edge: no negative light
+          // No negative light from the cubic's overshoot at an isogyre's edge.
+          v = glm::max(cubic_at(grid, W, H, static_cast<float>(gx), static_cast<float>(gy)), glm::vec3(0.0f));
         } else if (!r.outside.empty()) {
           const int sx = static_cast<int>(std::lround(gx)), sy = static_cast<int>(std::lround(gy));
-          if (sx >= 0 && sy >= 0 && sx < W && sy < H) v = contract(r.outside, static_cast<std::size_t>(sy) * W + sx);
+          if (sx >= 0 && sy >= 0 && sx < W && sy < H) {
+            const std::size_t q = static_cast<std::size_t>(sy) * W + sx;
+            for (int k = 0; k < 9; ++k)
+              for (int c = 0; c < 3; ++c) v[c] += w[k] * r.outside[(3 * k + c) * n + q];
+          }
         }
-        const glm::dvec3 rgb = r.monochromatic ? glm::dvec3(v.y) : xyz_to_linear_srgb(v);
+        const glm::vec3 rgb = r.monochromatic ? glm::vec3(v.y) : to_rgb * v;
         for (int k = 0; k < 3; ++k) {
-          img.xyz[3 * o + k] = std::isfinite(v[k]) ? static_cast<float>(v[k]) : 0.0f;
-          img.rgb[3 * o + k] = std::isfinite(rgb[k]) ? static_cast<float>(rgb[k]) : 0.0f;
+          img.xyz[3 * o + k] = std::isfinite(v[k]) ? v[k] : 0.0f;
+          img.rgb[3 * o + k] = std::isfinite(rgb[k]) ? rgb[k] : 0.0f;
         }
       }
+    }
   });
   return img;
 }

@@ -45,12 +45,14 @@ bool figure_response_applies(const Scene& scene);
 struct FigureResponse {
   int width = 0, height = 0;
   bool monochromatic = false;  // render.single_wavelength_nm: R = G = B = Y
-  // Per pixel, probe (i: analyzer, j: polarizer) at 3·(3·i + j): 27 floats of XYZ; unlit pixels
+  // 27 planes of width × height floats: plane 3·(3·i + j) + c holds channel c (X, Y, Z) of the
+  // probe with the analyzer at kFigureProbeDeg[i] and the polarizer at kFigureProbeDeg[j]
+  // (planes: a frame's contraction is nine contiguous multiply-adds that vectorise). Unlit pixels
   // next to the disc hold their nearest lit neighbour (the cubic's reach).
   std::vector<float> probes;
   std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant)
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
-  // read nearest-neighbour; empty when there is none.
+  // read nearest-neighbour (the same planes); empty when there is none.
   std::vector<float> outside;
   // The spectral level the probes were rendered at, and the convergence of the figure's own
   // render at the scene's settings (what every composed image carries).
