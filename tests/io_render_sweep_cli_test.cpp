@@ -234,3 +234,32 @@ TEST(RenderSweepCli, TracedStageSweepMatchesSeparateRenders) {
   EXPECT_LT(d30, 0.039);
   EXPECT_GT(wrong, 0.039);  // the bound tells the angles apart
 }
+
+// A conoscopic figure's sweep is composed from its nine probes (core/specimen/figure_response.h):
+// at stage 0° the composition is the separate render to float rounding (≤ 2.4·10⁻⁷ in XYZ,
+// tests/figure_response_test.cpp), so the 8-bit frames differ from the separate renders by at
+// most one level where a value sits on a rounding edge.
+TEST(RenderSweepCli, FigureSweepIsComposedFromOneResponse) {
+  ASSERT_TRUE(fs::exists(kRenderBinary)) << kRenderBinary << " not built";
+  const std::string d = fresh_dir("figure");
+  const std::string figure = std::string(PMSIM_SOURCE_DIR) + "/assets/scenes/biaxial_acute_bisectrix.json" + kSmall;
+  const pmsim::test::CliRun r =
+      run_render_cli(figure + " --sweep analyzer_deg=0:90:45 --out " + d + "/a_%d.png --stats " + d + "/s.json", d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = read_json(d + "/s.json");
+  ASSERT_TRUE(s["response"].is_object());
+  EXPECT_EQ(s["response"]["coverage"], "figure");
+  EXPECT_EQ(s["stopped"], s["response"]["stopped"]);
+  const char* values[] = {"0", "45", "90"};
+  for (int i = 0; i < 3; ++i) {
+    const std::string single = d + "/single_" + values[i] + ".png";
+    ASSERT_EQ(run_render_cli(figure + " --set analyzer_deg=" + values[i] + " --out " + single, d).code, 0);
+    const pmsim::LoadedImage a = pmsim::read_image(d + "/a_" + std::to_string(i) + ".png"), b = pmsim::read_image(single);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < a.pixels.size(); ++k) worst = std::max(worst, std::abs(double(a.pixels[k]) - b.pixels[k]));
+    EXPECT_LE(worst, 1.0 / 255.0 + 1e-6) << "frame " << i << " against --set analyzer_deg=" << values[i];
+  }
+  // Parallel and crossed analyzers differ: the frames are not one image repeated.
+  EXPECT_FALSE(pmsim::read_image(d + "/a_0.png").pixels == pmsim::read_image(d + "/a_2.png").pixels);
+}
