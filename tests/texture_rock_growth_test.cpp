@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/asset_locator.h"
+#include "core/base/input_error.h"
 #include "core/crystal/crystal_polyhedron.h"
 #include "core/crystal/euler_angles.h"
 #include "core/crystal/lattice.h"
@@ -577,4 +578,41 @@ TEST(RockGrowth, SchistMicasLieInTheFoliation) {
 }
 
 }  // namespace
+}  // namespace pmsim
+
+namespace pmsim {
+
+// A porphyroblast overgrows a matrix that was there before it; a granoblastic rock's grains
+// recrystallised together, so the two are refused together, naming the file and the key.
+TEST(RockRecipe, PorphyroblastInAGranoblasticRockIsRefused) {
+  nlohmann::json j;
+  {
+    std::ifstream f(rock_recipe_path("quartzite"));
+    j = nlohmann::json::parse(f);
+  }
+  ASSERT_TRUE(j.contains("granoblastic"));
+  j["phases"][0]["porphyroblast"] = true;
+  const std::string path = (std::filesystem::temp_directory_path() / "pmsim_porphyroblast_granoblastic.json").string();
+  {
+    std::ofstream f(path);
+    f << j.dump(2);
+  }
+  try {
+    (void)read_rock_recipe(path);
+    ADD_FAILURE() << "a porphyroblast in a granoblastic rock was accepted";
+  } catch (const pmsim::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(path), std::string::npos) << m;
+    EXPECT_NE(m.find("porphyroblast"), std::string::npos) << m;
+    EXPECT_NE(m.find("recrystallised together"), std::string::npos) << m;
+  }
+  j["phases"][0].erase("porphyroblast");  // the same file without it reads
+  {
+    std::ofstream f(path);
+    f << j.dump(2);
+  }
+  EXPECT_NO_THROW((void)read_rock_recipe(path));
+  std::filesystem::remove(path);
+}
+
 }  // namespace pmsim
