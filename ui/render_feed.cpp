@@ -97,6 +97,7 @@ void RenderFeed::run() {
       grains_mode_ = grains;
       figure_mode_ = false;
       figure_.reset();
+      ++source_epoch_;
       if (grains) {
         grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
         grain_running_ = true;
@@ -147,6 +148,11 @@ void RenderFeed::render_figure(const Scene& scene, std::uint64_t id) {
   figure_ = std::make_shared<const FigureResponse>(std::move(*figure));
   figure_scene_ = scene;
   figure_mode_ = true;
+  // Until the first composition the renderer's image stays on screen (snapshot() reports nothing
+  // new), not an image composed for an earlier scene.
+  composed_ = RenderImage{};
+  composed_response_ = composed_instrument_ = ~0ull;
+  ++source_epoch_;
   instrument_ = instrument_settings(scene);
   ++instrument_version_;
   ++response_version_;
@@ -194,11 +200,13 @@ void RenderFeed::compose_loop() {
     const ResponseProgress progress = response_latest_;  // shares the immutable response
     const std::shared_ptr<const FigureResponse> figure = figure_mode_ ? figure_ : nullptr;
     const InstrumentSettings instrument = instrument_;
-    const std::uint64_t rv = response_version_, iv = instrument_version_, generation = grain_generation_;
+    const std::uint64_t rv = response_version_, iv = instrument_version_, generation = grain_generation_,
+                        epoch = source_epoch_;
     lock.unlock();
     RenderImage img = figure ? compose_figure(*figure, instrument) : compose_progress(progress, instrument);
     img.generation = generation;
     lock.lock();
+    if (epoch != source_epoch_) continue;  // composed from a response that has since been replaced
     composed_ = std::move(img);
     composed_response_ = rv;
     composed_instrument_ = iv;

@@ -95,6 +95,9 @@ class RenderFeed {
   bool figure_mode_ = false;
   std::shared_ptr<const FigureResponse> figure_;
   Scene figure_scene_;
+  // Bumps when the composer's source is replaced (a new scene applied, a figure's response ready):
+  // a composition begun before is dropped, so no image of an earlier scene is shown after it.
+  std::uint64_t source_epoch_ = 0;
   std::uint64_t composed_response_ = ~0ull, composed_instrument_ = ~0ull;
   std::atomic<bool> grain_cancel_{false};
   // Until this steady-clock time (ns) the response tracer holds (an instrument change was just
