@@ -146,12 +146,15 @@ StrategyResult run_pass(const Scene& scene, int threads, int min_pass) {
 // image (previews and all passes included: what a UI showing only converged frames waits for).
 // The drag ends on the scene's own stage, so that the last image is compared with the reference.
 // time_ms and cpu_ms are means per frame.
+// The drag's stage at `frame` (0 … kStageDragFrames; the last: the scene's own stage).
+double drag_stage_deg(const Scene& scene, int frame) {
+  return std::fmod(scene.stage_deg + (frame - kStageDragFrames) + 360.0, 360.0);
+}
+
 StrategyResult run_stage_drag(const Scene& scene, int threads) {
   ProgressiveRenderer renderer(threads);
   Scene s = scene;
-  const auto stage_at = [&](int frame) {  // frame kStageDragFrames: the scene's stage
-    return std::fmod(scene.stage_deg + (frame - kStageDragFrames) + 360.0, 360.0);
-  };
+  const auto stage_at = [&](int frame) { return drag_stage_deg(scene, frame); };
   s.stage_deg = stage_at(0);
   renderer.restart(s);
   renderer.wait();
@@ -184,14 +187,14 @@ StrategyResult run_stage_drag(const Scene& scene, int threads) {
 // frame is one compose_figure. time_ms and cpu_ms are means per frame.
 StrategyResult run_figure_drag(const Scene& scene, int threads) {
   Scene s = scene;
-  s.stage_deg = std::fmod(scene.stage_deg - kStageDragFrames + 360.0, 360.0);
+  s.stage_deg = drag_stage_deg(scene, 0);
   const std::optional<FigureResponse> response = render_figure_response(s, threads);
   if (!response) throw std::runtime_error("the figure's response was not rendered");
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   double wall = 0.0, cpu = 0.0;
   RenderImage img;
   for (int f = 1; f <= kStageDragFrames; ++f) {
-    s.stage_deg = std::fmod(scene.stage_deg + (f - kStageDragFrames) + 360.0, 360.0);
+    s.stage_deg = drag_stage_deg(scene, f);
     const double cpu0 = process_cpu_ms();
     const auto t0 = Clock::now();
     arena.execute([&] { img = compose_figure(*response, instrument_settings(s)); });
