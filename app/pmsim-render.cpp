@@ -49,7 +49,7 @@
 #include "core/microscope/section_map.h"
 #include "core/render/exposure.h"
 #include "core/render/progressive_renderer.h"
-#include "core/specimen/figure_response.h"
+#include "core/specimen/instrument_response.h"
 #include "core/scene3d/scene3d_render.h"
 #include "core/specimen/becke_probe.h"
 #include "core/specimen/forward_response.h"
@@ -460,58 +460,40 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
   check_writable(outputs);
 
   const auto t0 = std::chrono::steady_clock::now();
-  // A traced specimen whose response serves every frame: traced once (Disc when the stage turns:
-  // the field sweeps a disc of the specimen), composed at each value.
-  bool one_response = pmsim::is_traced_specimen(frames[0]);
-  for (const pmsim::Scene& f : frames)
-    one_response = one_response && pmsim::is_traced_specimen(f) && pmsim::same_specimen_response(frames[0], f);
+  // One response serves every frame when the swept key only moves the instrument on a view that
+  // has one (core/specimen/instrument_response.h): a traced specimen's, traced once (over the disc
+  // the field sweeps when the stage turns), or a conoscopic figure's nine probes.
+  bool one_response = true;
+  for (const pmsim::Scene& f : frames) one_response = one_response && pmsim::response_serves(frames[0], f);
   const bool disc = sw.key == "stage_deg";
   nlohmann::json frame_stats = nlohmann::json::array(), response_stats;
-  std::optional<pmsim::ResponseProgress> response;
+  std::optional<pmsim::InstrumentResponse> response;
   if (one_response) {
-    progress.begin(std::string("response (") + (disc ? "disc" : "field") + ")",
+    const bool figure = pmsim::response_kind(frames[0]) == pmsim::ResponseKind::Figure;
+    progress.begin(figure ? "figure response" : std::string("response (") + (disc ? "disc" : "field") + ")",
                    frames[0].render.tolerance_de2000, progress_cap(frames[0]));
-    response = pmsim::render_traced_response(
-        frames[0], disc ? pmsim::ResponseCoverage::Disc : pmsim::ResponseCoverage::Field,
-        progress.enabled() ? [&](const pmsim::ResponseProgress& p) {
-          if (!p.response) return;
-          progress.update(p.response->passes, p.response->samples_per_pixel, p.error_estimate, p.response->time_ms,
-                          p.stopped, p.preview);
-        } : std::function<void(const pmsim::ResponseProgress&)>());
+    const pmsim::Scene& first = frames[0];
+    response = pmsim::render_instrument_response(
+        first, disc ? pmsim::ResponseCoverage::Disc : pmsim::ResponseCoverage::Field,
+        progress.enabled() ? [&](const pmsim::InstrumentResponse& r) {
+          const pmsim::RenderImage st = r.status();
+          progress.update(st.passes, progress_measure(first, st), st.error_estimate, st.time_ms, st.stopped,
+                          r.preview());
+        } : std::function<void(const pmsim::InstrumentResponse&)>());
     progress.end();
-    if (!response->response || response->stopped == "cancelled")
-      throw std::runtime_error("the specimen's response was not rendered");
-    const pmsim::SpecimenResponse& r = *response->response;
-    response_stats = {{"coverage", disc ? "disc" : "field"},
-                      {"time_ms", r.time_ms},
-                      {"samples_per_pixel", r.samples_per_pixel},
-                      {"passes", r.passes},
-                      {"error_estimate", response->error_estimate ? nlohmann::json(*response->error_estimate)
-                                                                  : nlohmann::json()},
-                      {"converged", response->converged},
-                      {"stopped", response->stopped},
-                      {"model_report", r.model_report}};
-  }
-  // A conoscopic figure without an accessory: its nine probes serve every stage angle and polar
-  // setting (core/specimen/figure_response.h).
-  bool one_figure = !one_response && pmsim::figure_response_applies(frames[0]);
-  for (const pmsim::Scene& f : frames)
-    one_figure = one_figure && pmsim::figure_response_applies(f) && pmsim::same_specimen_response(frames[0], f);
-  std::optional<pmsim::FigureResponse> figure;
-  if (one_figure) {
-    progress.begin("figure response", frames[0].render.tolerance_de2000, progress_cap(frames[0]));
-    figure = pmsim::render_figure_response(frames[0], 0, progress_callback(progress, frames[0]));
-    progress.end();
-    if (!figure) throw std::runtime_error("the figure's response was not rendered");
-    const pmsim::RenderImage& own = figure->progress;
-    response_stats = {{"coverage", "figure"},
-                      {"time_ms", figure->time_ms},
-                      {"wavelengths", figure->wavelengths},
-                      {"passes", own.passes},
-                      {"error_estimate", own.error_estimate ? nlohmann::json(*own.error_estimate) : nlohmann::json()},
-                      {"converged", own.converged},
-                      {"stopped", own.stopped},
-                      {"model_report", own.model_report}};
+    if (!response) throw std::runtime_error("the specimen's response was not rendered");
+    const pmsim::RenderImage st = response->status();
+    response_stats = {{"coverage", response->coverage_name()},
+                      {"time_ms", st.time_ms},
+                      {"passes", st.passes},
+                      {"error_estimate", st.error_estimate ? nlohmann::json(*st.error_estimate) : nlohmann::json()},
+                      {"converged", st.converged},
+                      {"stopped", st.stopped},
+                      {"model_report", st.model_report}};
+    if (figure)
+      response_stats["wavelengths"] = st.wavelengths;
+    else
+      response_stats["samples_per_pixel"] = st.samples_per_pixel;
   }
   bool all_converged = true, all_tolerance = true, any_unknown = false;
   double worst = 0.0;
@@ -521,10 +503,7 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
                               sw.values[i];
     pmsim::RenderImage img;
     if (response) {
-      img = pmsim::compose_progress(*response, pmsim::instrument_settings(f));
-      progress.note(label + ": composed");
-    } else if (figure) {
-      img = pmsim::compose_figure(*figure, pmsim::instrument_settings(f));
+      img = response->compose(pmsim::instrument_settings(f));
       progress.note(label + ": composed");
     } else {
       progress.begin(label, f.render.tolerance_de2000, progress_cap(f));
@@ -550,7 +529,7 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
     nlohmann::json stats;
     stats["sweep"] = {{"key", sw.key}, {"start", sw.start}, {"stop", sw.stop}, {"step", sw.step}, {"frames", n}};
     stats["time_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (response || figure) {
+    if (response) {
       // Every frame carries the response's estimate and stop.
       stats["error_estimate"] = response_stats["error_estimate"];
       stats["converged"] = response_stats["converged"];

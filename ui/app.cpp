@@ -1,6 +1,6 @@
 #include "ui/app.h"
 
-#include "core/specimen/traced_specimen.h"
+#include "core/specimen/instrument_response.h"
 
 #include <algorithm>
 #include <chrono>

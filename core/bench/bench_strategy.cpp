@@ -19,7 +19,7 @@
 #include "core/microscope/optical_train.h"
 #include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
-#include "core/specimen/figure_response.h"
+#include "core/specimen/instrument_response.h"
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 #include "core/spectrum/wavelength_sampling.h"
@@ -188,8 +188,10 @@ StrategyResult run_stage_drag(const Scene& scene, int threads) {
 StrategyResult run_figure_drag(const Scene& scene, int threads) {
   Scene s = scene;
   s.stage_deg = drag_stage_deg(scene, 0);
-  const std::optional<FigureResponse> response = render_figure_response(s, threads);
-  if (!response) throw std::runtime_error("the figure's response was not rendered");
+  const std::optional<InstrumentResponse> response =
+      render_instrument_response(s, ResponseCoverage::Field, nullptr, nullptr, threads);
+  if (!response || response->kind() != ResponseKind::Figure)
+    throw std::runtime_error("the figure's response was not rendered");
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   double wall = 0.0, cpu = 0.0;
   RenderImage img;
@@ -197,7 +199,7 @@ StrategyResult run_figure_drag(const Scene& scene, int threads) {
     s.stage_deg = drag_stage_deg(scene, f);
     const double cpu0 = process_cpu_ms();
     const auto t0 = Clock::now();
-    arena.execute([&] { img = compose_figure(*response, instrument_settings(s)); });
+    arena.execute([&] { img = response->compose(instrument_settings(s)); });
     wall += ms_since(t0);
     cpu += process_cpu_ms() - cpu0;
   }
@@ -205,11 +207,11 @@ StrategyResult run_figure_drag(const Scene& scene, int threads) {
   r.time_ms = wall / kStageDragFrames;
   r.cpu_ms = cpu / kStageDragFrames;
   r.xyz = std::move(img.xyz);
-  r.wavelengths = response->wavelengths;
+  r.wavelengths = response->status().wavelengths;
   r.error_estimate = img.error_estimate.value_or(-1.0);
   char head[160];
   std::snprintf(head, sizeof head, "mean of %d frames of a 1°/frame stage drag composed from the figure's response "
-                "(rendered once: %.0f ms); ", kStageDragFrames, response->time_ms);
+                "(rendered once: %.0f ms); ", kStageDragFrames, response->status().time_ms);
   r.model_report = head + img.model_report;
   return r;
 }

@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "core/microscope/map_section.h"
-#include "core/render/progressive_renderer.h"
 #include "core/specimen/forward_plane_light.h"
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_slab.h"
@@ -80,13 +79,6 @@ RenderImage render_traced_specimen(const Scene& scene, const std::function<void(
       },
       cancel);
   return compose_progress(last, instrument);
-}
-
-RenderImage render_microscope_scene(const Scene& scene, const std::function<void(const RenderImage&)>& progress,
-                                    const std::atomic<bool>* cancel) {
-  if (is_traced_specimen(scene)) return render_traced_specimen(scene, progress, cancel);
-  (void)cancel;  // the progressive renderer's static render runs to its stop
-  return ProgressiveRenderer::render(scene, 0, progress ? progress : [](const RenderImage&) {});
 }
 
 }  // namespace pmsim

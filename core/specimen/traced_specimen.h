@@ -35,10 +35,4 @@ ResponseProgress render_traced_response(const Scene& scene, ResponseCoverage cov
 // A stage angle away from the response's frame needs coverage Disc.
 bool same_specimen_response(const Scene& rendered, const Scene& next);
 
-// One image of a microscope scene, from whichever source the scene needs: a traced specimen's
-// response composed at the scene's settings, or the progressive renderer's flat image. What
-// pmsim-render, the app's export and the bench call.
-RenderImage render_microscope_scene(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
-                                    const std::atomic<bool>* cancel = nullptr);
-
 }  // namespace pmsim
