@@ -5,7 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include "core/microscope/scene_check.h"
-#include "core/specimen/traced_specimen.h"
 
 namespace pmsim::ui {
 
@@ -31,9 +30,7 @@ void RenderFeed::submit(const Scene& scene, std::uint64_t id) {
   {
     std::lock_guard<std::mutex> lock(mu_);
     // Only the instrument changed on a traced specimen or a figure: the response serves it as it is.
-    if (composing() && !busy_ && !pending_ && applied_id_ == submitted_id_ &&
-        (grains_mode_ ? same_specimen_response(traced_scene_, scene)
-                      : figure_response_applies(scene) && same_specimen_response(figure_scene_, scene))) {
+    if (composing() && !busy_ && !pending_ && applied_id_ == submitted_id_ && response_serves(source_scene_, scene)) {
       instrument_ = instrument_settings(scene);
       ++instrument_version_;
       grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
@@ -71,12 +68,13 @@ void RenderFeed::run() {
     // Grain mounts and sections with relief (plane light or between the polars): traced on this
     // thread, not by the progressive renderer (the slab is cached, so a polarizer or focus change
     // does not rebuild it).
-    bool grains = false;
+    ResponseKind kind = ResponseKind::None;
     try {
-      grains = is_traced_specimen(scene);
+      kind = response_kind(scene);
     } catch (const std::exception&) {
       // An unloadable section: the renderer's restart below reports it.
     }
+    const bool grains = kind == ResponseKind::Traced;
     std::optional<Failure> failed;
     try {
       if (grains) {
@@ -96,15 +94,14 @@ void RenderFeed::run() {
       applied_id_ = id;
       grains_mode_ = grains;
       figure_mode_ = false;
-      figure_.reset();
+      source_.reset();
       ++source_epoch_;
       if (grains) {
         grain_generation_ = kGrainGeneration | (grain_generation_ + 1);
         grain_running_ = true;
-        traced_scene_ = scene;
+        source_scene_ = scene;
         instrument_ = instrument_settings(scene);
         ++instrument_version_;
-        response_latest_ = ResponseProgress{};
         ++response_version_;
       } else {
         renderer_generation_ = ++restarts;
@@ -112,14 +109,12 @@ void RenderFeed::run() {
     }
     cv_.notify_all();
     if (!failed && grains) {
-      const std::uint64_t generation = grain_generation_;
       lock.unlock();
-      (void)generation;
-      render_grains(scene, generation);
+      render_grains(scene);
       lock.lock();
       grain_running_ = false;
       cv_.notify_all();
-    } else if (!failed && figure_response_applies(scene)) {
+    } else if (!failed && kind == ResponseKind::Figure) {
       lock.unlock();
       render_figure(scene, id);
       lock.lock();
@@ -145,8 +140,8 @@ void RenderFeed::render_figure(const Scene& scene, std::uint64_t id) {
   }
   std::lock_guard<std::mutex> lock(mu_);
   if (!figure || pending_ || busy_ || applied_id_ != id || submitted_id_ != id) return;
-  figure_ = std::make_shared<const FigureResponse>(std::move(*figure));
-  figure_scene_ = scene;
+  source_.emplace(std::make_shared<const FigureResponse>(std::move(*figure)));
+  source_scene_ = scene;
   figure_mode_ = true;
   // Until the first composition the renderer's image stays on screen (snapshot() reports nothing
   // new), not an image composed for an earlier scene.
@@ -160,27 +155,23 @@ void RenderFeed::render_figure(const Scene& scene, std::uint64_t id) {
   cv_.notify_all();
 }
 
-void RenderFeed::render_grains(const Scene& scene, std::uint64_t) {
+void RenderFeed::render_grains(const Scene& scene) {
   try {
-    // In an arena of the app's --threads, as the progressive renderer's (the traced response is
-    // otherwise free to take every core).
-    tbb::task_arena arena(threads_ > 0 ? threads_ : static_cast<int>(tbb::task_arena::automatic));
-    arena.execute([&] {
-      render_traced_response(
-          scene, ResponseCoverage::Disc,
-          [&](const ResponseProgress& p) {
-            std::lock_guard<std::mutex> lock(mu_);
-            response_latest_ = p;
-            ++response_version_;
-            cv_.notify_all();
-          },
-          &grain_cancel_,
-          [this] {
-            return std::chrono::steady_clock::now().time_since_epoch().count() <
-                   std::chrono::steady_clock::duration(std::chrono::nanoseconds(hold_until_ns_.load()))
-                       .count();
-          });
-    });
+    // In the app's --threads, as the progressive renderer (the traced response is otherwise free
+    // to take every core); held while the stage is dragged, so that composing and drawing get the cores.
+    render_instrument_response(
+        scene, ResponseCoverage::Disc,
+        [&](const InstrumentResponse& r) {
+          std::lock_guard<std::mutex> lock(mu_);
+          source_ = r;
+          ++response_version_;
+          cv_.notify_all();
+        },
+        &grain_cancel_, threads_,
+        [this] {
+          return std::chrono::steady_clock::now().time_since_epoch().count() <
+                 std::chrono::steady_clock::duration(std::chrono::nanoseconds(hold_until_ns_.load())).count();
+        });
   } catch (const std::exception& e) {
     // Passed the scene check but the mount could not be built (e.g. an unknown mineral name):
     // reported like a refused scene.
@@ -193,17 +184,16 @@ void RenderFeed::compose_loop() {
   std::unique_lock<std::mutex> lock(mu_);
   for (;;) {
     cv_.wait(lock, [&] {
-      return quit_ || (((grains_mode_ && response_latest_.response) || (figure_mode_ && figure_)) &&
+      return quit_ || (composing() && source_ && !source_->empty() &&
                        (composed_response_ != response_version_ || composed_instrument_ != instrument_version_));
     });
     if (quit_) return;
-    const ResponseProgress progress = response_latest_;  // shares the immutable response
-    const std::shared_ptr<const FigureResponse> figure = figure_mode_ ? figure_ : nullptr;
+    const InstrumentResponse source = *source_;  // shares the immutable response
     const InstrumentSettings instrument = instrument_;
     const std::uint64_t rv = response_version_, iv = instrument_version_, generation = grain_generation_,
                         epoch = source_epoch_;
     lock.unlock();
-    RenderImage img = figure ? compose_figure(*figure, instrument) : compose_progress(progress, instrument);
+    RenderImage img = source.compose(instrument);
     img.generation = generation;
     lock.lock();
     if (epoch != source_epoch_) continue;  // composed from a response that has since been replaced
@@ -259,7 +249,8 @@ bool RenderFeed::wait(double timeout_s) const {
     if (grains_mode_) {
       if (!cv_.wait_until(lock, deadline, [&] { return quit_ || pending_ || !grain_running_; })) return false;
       // Rendered: stopped at the tolerance or at its cap (the image says which).
-      return !pending_ && (response_latest_.stopped == "tolerance" || response_latest_.stopped == "cap");
+      const std::string stopped = source_ ? source_->status().stopped : std::string();
+      return !pending_ && (stopped == "tolerance" || stopped == "cap");
     }
   }
   const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();

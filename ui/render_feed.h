@@ -5,18 +5,18 @@
 // restarts the renderer with the newest one (older pending scenes are skipped: only the last
 // position of a drag matters), and the UI thread only ever takes snapshots.
 // A grain mount (sample.type = grains), and a thin section with optics.relief on (orthoscopic),
-// are refracting 3-D specimens that the core renders with render_traced_specimen (core/specimen,
-// is_traced_specimen decides), not the ProgressiveRenderer: the feeder thread runs it itself,
+// are refracting 3-D specimens whose response the core renders (render_instrument_response;
+// core/specimen/instrument_response.h's response_kind decides), not the ProgressiveRenderer: the feeder thread runs it itself,
 // pass by pass, and a newer submission cancels it through its cancel flag. A section's slab is
 // cached in core, so a focus or aperture change does not rebuild it.
 // Traced specimens are rendered as a response (core/specimen/specimen_response.h) covering the
 // disc the field sweeps: a submission that changes only the instrument (stage angle, polars,
-// accessory, exposure: same_specimen_response) neither cancels nor restarts anything; a composer
+// accessory, exposure: response_serves) neither cancels nor restarts anything; a composer
 // thread composes the newest response at the newest settings (15 ms at 512² on 2 idle cores,
 // more while the response is still being traced beside it) and snapshot() takes the newest
 // composed image, so the UI thread never waits for a composition and every image of a stage drag
 // shows its angle's colours at the response's convergence.
-// A conoscopic figure without an accessory (figure_response_applies) is rendered by the
+// A conoscopic figure without an accessory (response_kind Figure) is rendered by the
 // progressive renderer first; once that has converged, the feeder thread renders its nine probes
 // (core/specimen/figure_response.h, ~10 renders' work) and from then on a submission that changes
 // only the stage or the polars is composed from them by the composer thread, as a traced
@@ -31,8 +31,7 @@
 #include <thread>
 
 #include "core/render/progressive_renderer.h"
-#include "core/specimen/figure_response.h"
-#include "core/specimen/forward_response.h"
+#include "core/specimen/instrument_response.h"
 
 namespace pmsim::ui {
 
@@ -62,7 +61,7 @@ class RenderFeed {
  private:
   void run();
   void compose_loop();  // the composer thread
-  void render_grains(const Scene& scene, std::uint64_t generation);  // on the feeder thread, unlocked
+  void render_grains(const Scene& scene);                            // on the feeder thread, unlocked
   void render_figure(const Scene& scene, std::uint64_t id);          // on the feeder thread, unlocked
   bool composing() const { return grains_mode_ || figure_mode_; }    // snapshots come from the composer
 
@@ -84,17 +83,17 @@ class RenderFeed {
   bool grains_mode_ = false;       // the applied scene is a grain mount
   bool grain_running_ = false;     // its render is in flight
   std::uint64_t grain_generation_ = 0;  // kGrainGeneration | n of the applied grain mount
-  ResponseProgress response_latest_;       // the traced response so far
+  // The composer's source (core/specimen/instrument_response.h): the traced response so far, or
+  // the figure's response once its probes are rendered; for source_scene_.
+  std::optional<InstrumentResponse> source_;
+  Scene source_scene_;
   std::uint64_t response_version_ = 0;     // bumps with every new response state
-  Scene traced_scene_;                     // the scene the response is rendered for
   InstrumentSettings instrument_;          // the newest submission's settings
   std::uint64_t instrument_version_ = 0;   // bumps with every instrument-only submission
   RenderImage composed_;                   // the response composed at instrument_
-  // The conoscopic figure's response (figure mode), for figure_scene_; its images carry
+  // A conoscopic figure composed from its response (source_); its images carry
   // kGrainGeneration-tagged generations as the traced path's.
   bool figure_mode_ = false;
-  std::shared_ptr<const FigureResponse> figure_;
-  Scene figure_scene_;
   // Bumps when the composer's source is replaced (a new scene applied, a figure's response ready):
   // a composition begun before is dropped, so no image of an earlier scene is shown after it.
   std::uint64_t source_epoch_ = 0;
