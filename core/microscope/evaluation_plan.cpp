@@ -50,8 +50,8 @@ EvaluationPlan EvaluationPlan::with_modal_terms(std::vector<ModalTerms> terms) c
   return plan;
 }
 
-std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene,
-                                                              const std::atomic<bool>* cancel) {
+std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene, const std::atomic<bool>* cancel,
+                                                              bool keep_fits) {
   check_scene(scene);
   std::shared_ptr<EvaluationPlan> plan(new EvaluationPlan(scene));
   plan->domains_ = optical_domains(scene);
@@ -65,7 +65,7 @@ std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene
   });
   ModelPolicy& policy = plan->policy_;
   if (policy.plate_model == PlateModel::Modal) {
-    std::optional<ModalUnits> modal = fit_modal_units(*plan, policy.exact, cancel);
+    std::optional<ModalUnits> modal = fit_modal_units(*plan, policy.exact, cancel, keep_fits);
     if (!modal) return nullptr;
     plan->modal_ = std::move(*modal);
     policy.radial_table = plan->modal_.radial_table;

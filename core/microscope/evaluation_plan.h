@@ -74,6 +74,9 @@ class EvaluationPlan {
     return modal_.terms;
   }  // unit u, direction d at u*dirs_per_unit+d
   int dirs_per_unit() const { return modal_.dirs_per_unit; }
+  // The fits behind modal_terms(), indexed alike (compile_evaluation_plan's `keep_fits`; else
+  // empty): their terms in other trains are make_modal_terms away.
+  const std::vector<ModalFit>& modal_fits() const { return modal_.fits; }
   bool needs_exact(int unit) const {
     return policy_.plate_model == PlateModel::Exact ||
            (!modal_.unit_exact.empty() && modal_.unit_exact[unit]);
@@ -92,8 +95,7 @@ class EvaluationPlan {
   EvaluationPlan with_modal_terms(std::vector<ModalTerms> terms) const;
 
  private:
-  friend std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene&,
-                                                                       const std::atomic<bool>*);
+  friend std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene&, const std::atomic<bool>*, bool);
   explicit EvaluationPlan(const Scene& scene) : scene_(scene) {}
 
   Scene scene_;
@@ -107,9 +109,11 @@ class EvaluationPlan {
 };
 
 // Validates (InputError) and compiles. Fits the modal plates in parallel (TBB); `cancel` (may be
-// null) aborts early, returning null.
+// null) aborts early, returning null. `keep_fits`: keep the modal fits (modal_fits(); a figure's
+// probes evaluate one plan in nine trains).
 std::shared_ptr<const EvaluationPlan> compile_evaluation_plan(const Scene& scene,
-                                                              const std::atomic<bool>* cancel = nullptr);
+                                                              const std::atomic<bool>* cancel = nullptr,
+                                                              bool keep_fits = false);
 
 // The domain shown at image point (x_frac, y_frac) (0…1 from the left and from the top) in
 // parallel light, or the one under the field centre in a conoscopic view; -1 outside any lit area.

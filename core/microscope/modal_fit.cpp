@@ -155,6 +155,14 @@ ModalTerms make_modal_terms(const ModalFit& f, const TrainState& train, double s
   return m;
 }
 
+ModalFit identity_modal_fit() {
+  const double gamma[3] = {0.0, 0.0, 0.0}, t[3] = {1.0, 1.0, 1.0};
+  const glm::dvec2 e1[3] = {{1.0, 0.0}, {1.0, 0.0}, {1.0, 0.0}}, e2[3] = {{0.0, 1.0}, {0.0, 1.0}, {0.0, 1.0}};
+  ModalFit f;
+  f.assign(gamma, e1, e2, t, t);
+  return f;
+}
+
 ModalTerms identity_modal_terms(const TrainState& train, const glm::dmat2* lens_in,
                                 const glm::dmat2* lens_out) {
   ModalTerms m;

@@ -63,6 +63,9 @@ struct ModalTerms {
 // (after it) for this direction, in the ray's transverse basis; null = ideal lenses.
 ModalTerms make_modal_terms(const ModalFit& fit, const TrainState& train, double thickness_scale = 1.0,
                             const glm::dmat2* lens_in = nullptr, const glm::dmat2* lens_out = nullptr);
+// The identity sample's fit: no retardation, modes along the basis, full transmission (its terms
+// in any train are identity_modal_terms').
+ModalFit identity_modal_fit();
 // The identity sample (empty stage, isotropic layer) in the same train.
 ModalTerms identity_modal_terms(const TrainState& train, const glm::dmat2* lens_in = nullptr,
                                 const glm::dmat2* lens_out = nullptr);

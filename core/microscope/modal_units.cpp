@@ -14,8 +14,12 @@
 
 namespace pmsim {
 
+double modal_thickness_scale(const EvalUnit& unit, const OpticalDomain& domain) {
+  return domain.crystal && unit.thickness_um > 0.0 ? unit.thickness_um / domain.thickness_um : 1.0;
+}
+
 std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const ExactnessCriteria& exact,
-                                          const std::atomic<bool>* cancel) {
+                                          const std::atomic<bool>* cancel, bool keep_fits) {
   const Scene& scene = plan.scene();
   const std::vector<OpticalDomain>& domains = plan.domains();
   const std::vector<EvalUnit>& units = plan.units();
@@ -23,6 +27,7 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
   out.dirs_per_unit = plan.cone_dirs().empty() ? 1 : static_cast<int>(plan.cone_dirs().size());
   const int dirs_per_unit = out.dirs_per_unit;
   out.terms.resize(units.size() * dirs_per_unit);
+  if (keep_fits) out.fits.resize(out.terms.size(), identity_modal_fit());
   out.unit_exact.assign(units.size(), 0);
   const TrainState train = make_train(scene, plan.compensator(), 550.0);  // its directions only
   // Anchors prepared once per domain that a unit shows (a coarse pass over an EBSD map misses
@@ -92,8 +97,9 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
             plan.lens_jones(plan.dir(unit, d), jc, jo);
             const glm::dmat2* pc = &jc;
             const glm::dmat2* po = &jo;
+            const std::size_t at = u * dirs_per_unit + d;
             if (!dom.crystal || unit.thickness_um <= 0.0) {
-              out.terms[u * dirs_per_unit + d] = identity_modal_terms(train, pc, po);
+              out.terms[at] = identity_modal_terms(train, pc, po);
               continue;
             }
             ModalFit fit;
@@ -113,8 +119,8 @@ std::optional<ModalUnits> fit_modal_units(const EvaluationPlan& plan, const Exac
                   2.0 * kPi * fit.retardation_nm(400.0) * unit.thickness_um / dom.thickness_um / 400.0;
               if (lin < 30.0 * rot) out.unit_exact[u] = 1;
             }
-            out.terms[u * dirs_per_unit + d] =
-                make_modal_terms(fit, train, unit.thickness_um / dom.thickness_um, pc, po);
+            out.terms[at] = make_modal_terms(fit, train, modal_thickness_scale(unit, dom), pc, po);
+            if (keep_fits) out.fits[at] = fit;
           }
         }
       });

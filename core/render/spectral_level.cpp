@@ -221,9 +221,10 @@ glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* 
   return xyz;
 }
 
+constexpr int kChunk = 256;  // the plain path's band arrays on the stack
+
 glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
   if (!plan.compensator().present && !L.monochromatic) {
-    constexpr int kChunk = 256;
     alignas(32) double va[kChunk + 3], vb[kChunk + 3];
     if (L.n <= kChunk) {
       const EvalUnit& unit = plan.units()[u];
@@ -285,6 +286,47 @@ glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, in
 }
 
 }  // namespace
+
+bool shares_band_loop(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
+  return !plan.needs_exact(u) && !plan.compensator().present && !L.monochromatic && L.n <= kChunk;
+}
+
+void evaluate_unit_in_trains(const EvaluationPlan& plan, const SpectralLevel& L, int u,
+                             const std::vector<TrainState>& trains, glm::dvec3* xyz) {
+  alignas(32) double va[kChunk + 3], vb[kChunk + 3];
+  const EvalUnit& unit = plan.units()[u];
+  const double scale = modal_thickness_scale(unit, plan.domains()[unit.domain]);
+  const int D = plan.dirs_of(unit);
+  const std::size_t T = trains.size();
+  for (std::size_t t = 0; t < T; ++t) xyz[t] = glm::dvec3(0.0);
+  for (int d = 0; d < D; ++d) {
+    const ModalFit& fit = plan.modal_fits()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d];
+    glm::dmat2 jc, jo;
+    plan.lens_jones(plan.dir(unit, d), jc, jo);
+    ModalTerms first = make_modal_terms(fit, trains[0], scale, &jc, &jo);
+    // Cφ ≡ 1 at every anchor: the Lagrange weights sum to 1, so the bands give cos φ·sinc and sin φ·q.
+    ModalTerms unit_phase = first;
+    for (int a = 0; a < 3; ++a) unit_phase.c[1][a] = 1.0;
+    if (kHaveAvx2)
+      modal_plain_bands_avx2(unit_phase, L, va, vb);
+    else
+      modal_plain_bands<v2d>(unit_phase, L, va, vb);
+    glm::dvec3 sum[3]{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (int i = 0; i < L.n; ++i) {
+      const glm::dvec3 band = L.weight[i] * va[i] - L.moment6h[i] * vb[i];
+      for (int a = 0; a < 3; ++a) sum[a] += L.aw[a][i] * band;
+    }
+    for (std::size_t t = 0; t < T; ++t) {
+      const ModalTerms m = t == 0 ? first : make_modal_terms(fit, trains[t], scale, &jc, &jo);
+      for (int a = 0; a < 3; ++a) xyz[t] += L.steady[a] * m.c[0][a] + sum[a] * m.c[1][a];
+    }
+  }
+  for (std::size_t t = 0; t < T; ++t) {
+    xyz[t] /= D;
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(xyz[t][k])) xyz[t][k] = 0.0;
+  }
+}
 
 glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
   if (!plan.needs_exact(u)) return modal_unit_xyz(plan, L, u);

@@ -49,4 +49,15 @@ double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& level,
 // XYZ of one unit (Y = 1: the exposure reference); monochromatic: (T, T, T).
 glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& level, int unit);
 
+// One unit in several polarizing trains at once (no compensator in any): xyz[t] is what
+// evaluate_unit gives on the plan of trains[t]. The plan must keep its fits (modal_fits()). The
+// modal band sum is Σ_a steady[a]·C0[a] + Σ_a Cφ[a]·S_a, where
+// S_a = Σ_bands w_a·(W·cos φ·sinc − M·6/h·sin φ·q) depends on the fit's Γ alone (modal_plain_xyz's
+// sum regrouped by anchor): the band loop runs once a direction, each train costs its terms
+// (make_modal_terms) and a few products. Only for units shares_band_loop accepts (modal, bands,
+// no compensator, at most 256 bands).
+bool shares_band_loop(const EvaluationPlan& plan, const SpectralLevel& level, int unit);
+void evaluate_unit_in_trains(const EvaluationPlan& plan, const SpectralLevel& level, int unit,
+                             const std::vector<TrainState>& trains, glm::dvec3* xyz);
+
 }  // namespace pmsim

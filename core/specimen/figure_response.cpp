@@ -7,11 +7,16 @@
 
 #include <glm/mat3x3.hpp>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/base/conventions.h"
+#include "core/microscope/compensator.h"
+#include "core/microscope/evaluation_plan.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/cubic_sample.h"
+#include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
+#include "core/render/spectral_level.h"
 #include "core/spectrum/color.h"
 
 namespace pmsim {
@@ -85,6 +90,64 @@ std::optional<FigureResponse> render_figure_response(const Scene& scene, int thr
   return r;
 }
 
+namespace {
+
+// Probe k = 3·i + j: stage 0°, the analyzer at kFigureProbeDeg[i], the polarizer at kFigureProbeDeg[j],
+// at the figure's converged spectral level.
+Scene probe_scene(const Scene& scene, int k, int wavelengths) {
+  Scene s = scene;
+  s.stage_deg = 0.0;
+  s.analyzer_in = true;
+  s.analyzer_deg = kFigureProbeDeg[k / 3];
+  s.polarizer_deg = kFigureProbeDeg[k % 3];
+  if (s.render.single_wavelength_nm <= 0) s.render.wavelengths = wavelengths;
+  return s;
+}
+
+void store_probe(FigureResponse& r, int k, const std::vector<float>& xyz) {
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  for (std::size_t p = 0; p < n; ++p)
+    for (int c = 0; c < 3; ++c) r.probes[(3 * k + c) * n + p] = xyz[3 * p + c];
+}
+
+// The nine probes from one plan: its fits kept, reduced in the nine probes' trains, and one band
+// loop a direction for all nine (evaluate_unit_in_trains), each probe developed as its own
+// render's image is. False where that does not hold — the exact plate model, an exact unit, one spectral line,
+// ghost light (reckoned per train), more than 256 bands — or when cancelled.
+bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool>* cancel) {
+  std::vector<TrainState> trains;
+  const Scene base = probe_scene(scene, 0, r.wavelengths);
+  for (int k = 0; k < 9; ++k)
+    trains.push_back(make_train(probe_scene(scene, k, r.wavelengths),
+                                make_compensator(base.compensator, base.compensator_position), 550.0));
+  const std::shared_ptr<const EvaluationPlan> plan = compile_evaluation_plan(base, cancel, true);
+  if (!plan || plan->plate_model() != PlateModel::Modal || plan->modal_fits().size() != plan->modal_terms().size() ||
+      !plan->ghost_xyz().empty())
+    return false;
+  const SpectralLevel level = make_spectral_level(*plan, r.wavelengths);
+  const int units = static_cast<int>(plan->units().size());
+  for (int u = 0; u < units; ++u)
+    if (!shares_band_loop(*plan, level, u)) return false;
+  std::vector<std::vector<glm::dvec3>> xyz(9, std::vector<glm::dvec3>(units));
+  tbb::parallel_for(tbb::blocked_range<int>(0, units, 256), [&](const tbb::blocked_range<int>& b) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    glm::dvec3 v[9];
+    for (int u = b.begin(); u != b.end(); ++u) {
+      evaluate_unit_in_trains(*plan, level, u, trains, v);
+      for (int k = 0; k < 9; ++k) xyz[k][u] = v[k];
+    }
+  });
+  RenderImage img;
+  for (int k = 0; k < 9; ++k) {
+    if (cancel && cancel->load()) return false;
+    develop_image(*plan, xyz[k], false, img, cancel);
+    store_probe(r, k, img.xyz);
+  }
+  return !(cancel && cancel->load());
+}
+
+}  // namespace
+
 std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads,
                                                    const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -99,20 +162,16 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   r.progress.xyz.clear();
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   r.probes.assign(n * kProbeFloats, 0.0f);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      Scene s = scene;
-      s.stage_deg = 0.0;
-      s.analyzer_in = true;
-      s.analyzer_deg = kFigureProbeDeg[i];
-      s.polarizer_deg = kFigureProbeDeg[j];
-      if (!r.monochromatic) s.render.wavelengths = own.wavelengths;
-      const RenderImage probe = ProgressiveRenderer::render(s, threads);
-      if (cancelled()) return std::nullopt;
-      const int k = 3 * i + j;
-      for (std::size_t p = 0; p < n; ++p)
-        for (int c = 0; c < 3; ++c) r.probes[(3 * k + c) * n + p] = probe.xyz[3 * p + c];
-    }
+  bool shared = false;
+  if (!r.monochromatic) {
+    tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
+    arena.execute([&] { shared = shared_probes(scene, r, cancel); });
+  }
+  if (cancelled()) return std::nullopt;
+  for (int k = 0; k < 9 && !shared; ++k) {
+    store_probe(r, k, ProgressiveRenderer::render(probe_scene(scene, k, r.wavelengths), threads).xyz);
+    if (cancelled()) return std::nullopt;
+  }
   r.lit = figure_disc(scene);
   bool light_outside = false;
   for (std::size_t p = 0; p < n && !light_outside; ++p)
