@@ -18,7 +18,7 @@
 // shows its angle's colours at the response's convergence.
 // A conoscopic figure without an accessory (response_kind Figure) is rendered by the
 // progressive renderer first; once that has converged, the feeder thread renders its nine probes
-// (core/specimen/figure_response.h, ~10 renders' work) and from then on a submission that changes
+// (core/specimen/figure_response.h, 2–3 renders' work) and from then on a submission that changes
 // only the stage or the polars is composed from them by the composer thread, as a traced
 // specimen's. Any other change drops the figure's response and restarts the renderer.
 #include <atomic>

@@ -74,7 +74,7 @@ std::optional<InstrumentResponse> render_instrument_response(
 
 // One image of a microscope scene, from the source response_kind names for it: a traced specimen's
 // response (Field coverage) composed at the scene's settings, else the progressive renderer (a
-// single figure is rendered, not probed: its probes cost ten renders). What pmsim-render, the
+// single figure is rendered, not probed: its probes cost two to three renders). What pmsim-render, the
 // app's export and the bench call for one image.
 RenderImage render_microscope_scene(const Scene& scene, const std::function<void(const RenderImage&)>& progress = nullptr,
                                     const std::atomic<bool>* cancel = nullptr);
