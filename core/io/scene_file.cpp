@@ -131,160 +131,183 @@ struct Key {
   std::function<json(const Scene&)> write;
 };
 
-const std::vector<Key>& keys() {
-  static const std::vector<Key> k = {
-      {"mode", [](Scene& s, const json& v) { s.mode = as_enum(v, kModes); },
-       [](const Scene& s) -> json { return enum_name(s.mode, kModes); }},
-      {"polarizer_deg", [](Scene& s, const json& v) { s.polarizer_deg = as_number(v); },
-       [](const Scene& s) -> json { return s.polarizer_deg; }},
-      {"analyzer_deg", [](Scene& s, const json& v) { s.analyzer_deg = as_number(v); },
-       [](const Scene& s) -> json { return s.analyzer_deg; }},
-      {"analyzer", [](Scene& s, const json& v) { s.analyzer_in = as_in_out(v); },
-       [](const Scene& s) -> json { return s.analyzer_in ? "in" : "out"; }},
-      {"stage_deg", [](Scene& s, const json& v) { s.stage_deg = as_number(v); },
-       [](const Scene& s) -> json { return s.stage_deg; }},
-      {"stage.x_mm", [](Scene& s, const json& v) { s.stage.x_mm = as_number(v); },
-       [](const Scene& s) -> json { return s.stage.x_mm; }},
-      {"stage.y_mm", [](Scene& s, const json& v) { s.stage.y_mm = as_number(v); },
-       [](const Scene& s) -> json { return s.stage.y_mm; }},
-      {"bertrand", [](Scene& s, const json& v) { s.bertrand_in = as_in_out(v); },
-       [](const Scene& s) -> json { return s.bertrand_in ? "in" : "out"; }},
-      {"illuminant",
-       [](Scene& s, const json& v) {
-         if (!parse_illuminant(as_string(v), s.illuminant)) throw BadValue{"expected D65 or A"};
-       },
-       [](const Scene& s) -> json { return std::string(illuminant_name(s.illuminant)); }},
-      {"objective.magnification", [](Scene& s, const json& v) { s.objective.magnification = as_number(v); },
-       [](const Scene& s) -> json { return s.objective.magnification; }},
-      {"objective.na", [](Scene& s, const json& v) { s.objective.na = as_number(v); },
-       [](const Scene& s) -> json { return s.objective.na; }},
-      {"eyepiece.field_number_mm", [](Scene& s, const json& v) { s.eyepiece.field_number_mm = as_number(v); },
-       [](const Scene& s) -> json { return s.eyepiece.field_number_mm; }},
-      {"condenser.na", [](Scene& s, const json& v) { s.condenser.na = as_number(v); },
-       [](const Scene& s) -> json { return s.condenser.na; }},
-      {"condenser.aperture_na", [](Scene& s, const json& v) { s.condenser.aperture_na = as_number(v); },
-       [](const Scene& s) -> json { return s.condenser.aperture_na; }},
-      {"focus_um", [](Scene& s, const json& v) { s.focus_um = as_number(v); },
-       [](const Scene& s) -> json { return s.focus_um; }},
-      {"sample.present", [](Scene& s, const json& v) { s.sample_in = as_bool(v); },
-       [](const Scene& s) -> json { return s.sample_in; }},
-      {"sample.type", [](Scene& s, const json& v) { s.sample.type = as_enum(v, kSampleTypes); },
-       [](const Scene& s) -> json { return enum_name(s.sample.type, kSampleTypes); }},
-      {"sample.mineral",
-       [](Scene& s, const json& v) {
-         s.sample.mineral = as_string(v);
-         s.sample.crystal.reset();  // the latest choice of sample wins
-       },
-       [](const Scene& s) -> json { return s.sample.mineral; }},
-      {"sample.crystal",
-       [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
-           s.sample.crystal.reset();
-         else
-           s.sample.crystal = as_crystal(v);
-       },
-       [](const Scene& s) -> json {
-         return s.sample.crystal ? crystal_json(*s.sample.crystal) : json(nullptr);
-       }},
-      {"sample.thickness_um", [](Scene& s, const json& v) { s.sample.thickness_um = as_number(v); },
-       [](const Scene& s) -> json { return s.sample.thickness_um; }},
-      {"sample.optic_axis", [](Scene& s, const json& v) { s.sample.optic_axis = as_vec3(v); },
-       [](const Scene& s) -> json { return s.sample.optic_axis; }},
-      {"sample.x_axis", [](Scene& s, const json& v) { s.sample.x_axis = as_vec3(v); },
-       [](const Scene& s) -> json { return s.sample.x_axis; }},
-      {"sample.z_axis", [](Scene& s, const json& v) { s.sample.z_axis = as_vec3(v); },
-       [](const Scene& s) -> json { return s.sample.z_axis; }},
-      {"sample.cut",
-       [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
-           s.sample.cut.reset();
-         else
-           s.sample.cut = as_cut(v);
-       },
-       [](const Scene& s) -> json {
-         return s.sample.cut ? json{{"plane", s.sample.cut->plane}, {"north", s.sample.cut->north}}
-                             : json(nullptr);
-       }},
-      {"sample.section", [](Scene& s, const json& v) { s.sample.section = as_string(v); },
-       [](const Scene& s) -> json { return s.sample.section; }},
-      {"sample.medium", [](Scene& s, const json& v) { s.sample.medium = as_string(v); },
-       [](const Scene& s) -> json { return s.sample.medium; }},
-      // The EBSD map keys are written only when they differ from the default, so that the saved
-      // form (and image metadata) of every other scene stays as it was.
-      {"sample.phases", [](Scene& s, const json& v) { s.sample.phases = as_phases(v); },
-       [](const Scene& s) -> json { return s.sample.phases.empty() ? json(nullptr) : json(s.sample.phases); }},
-      {"sample.nonindexed", [](Scene& s, const json& v) { s.sample.nonindexed = as_enum(v, kNonIndexed); },
-       [](const Scene& s) -> json {
-         return s.sample.nonindexed == NonIndexed::Medium ? json(nullptr) : json(enum_name(s.sample.nonindexed, kNonIndexed));
-       }},
-      {"sample.medium_index",
-       [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
-           s.sample.medium_index.reset();
-         else
-           s.sample.medium_index = as_number(v);
-       },
-       [](const Scene& s) -> json { return s.sample.medium_index ? json(*s.sample.medium_index) : json(nullptr); }},
-      {"sample.orientation_seed",
-       [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
-           s.sample.orientation_seed.reset();
-         else
-           s.sample.orientation_seed = as_int(v);
-       },
-       [](const Scene& s) -> json { return s.sample.orientation_seed ? json(*s.sample.orientation_seed) : json(nullptr); }},
-      {"sample.seed",
-       [](Scene& s, const json& v) {
-         if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
-           s.sample.seed.reset();
-         else
-           s.sample.seed = as_int(v);
-       },
-       [](const Scene& s) -> json { return s.sample.seed ? json(*s.sample.seed) : json(nullptr); }},
-      {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
-       [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
-      {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },
-       [](const Scene& s) -> json { return s.compensator_position; }},
-      {"render.width", [](Scene& s, const json& v) { s.render.width = as_int(v); },
-       [](const Scene& s) -> json { return s.render.width; }},
-      {"render.height", [](Scene& s, const json& v) { s.render.height = as_int(v); },
-       [](const Scene& s) -> json { return s.render.height; }},
-      {"render.spp", [](Scene& s, const json& v) { s.render.spp = as_int(v); },
-       [](const Scene& s) -> json { return s.render.spp; }},
-      {"render.wavelengths", [](Scene& s, const json& v) { s.render.wavelengths = as_int(v); },
-       [](const Scene& s) -> json { return s.render.wavelengths; }},
-      {"render.single_wavelength_nm",
-       [](Scene& s, const json& v) { s.render.single_wavelength_nm = as_number(v); },
-       [](const Scene& s) -> json { return s.render.single_wavelength_nm; }},
-      {"render.tolerance", [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
-       [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
-      {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
-       [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
-      {"render.native", [](Scene& s, const json& v) { s.render.native = as_on_off(v); },
-       [](const Scene& s) -> json { return s.render.native ? json("on") : json(nullptr); }},
-      {"render.exposure_ev", [](Scene& s, const json& v) { s.render.exposure_ev = as_number(v); },
-       [](const Scene& s) -> json { return s.render.exposure_ev != 0.0 ? json(s.render.exposure_ev) : json(nullptr); }},
-      {"render.vision",
-       [](Scene& s, const json& v) {
-         if (!parse_colour_vision(as_string(v), s.render.vision))
-           throw BadValue{"expected normal, protanopia, deuteranopia or tritanopia"};
-       },
-       [](const Scene& s) -> json {
-         return s.render.vision != ColourVision::Normal ? json(std::string(colour_vision_name(s.render.vision)))
-                                                         : json(nullptr);
-       }},
-      {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
-       [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
-      {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
-       [](const Scene& s) -> json { return s.optics.lens_depth; }},
-      {"optics.relief", [](Scene& s, const json& v) { s.optics.relief = as_on_off(v); },
-       [](const Scene& s) -> json { return s.optics.relief ? json(nullptr) : json("off"); }},
-      {"optics.schlick",  // a bool in files and --set: true is the Schlick approximation
-       [](Scene& s, const json& v) {
-         s.optics.fresnel = as_bool(v) ? FresnelModel::Schlick : FresnelModel::Exact;
-       },
-       [](const Scene& s) -> json { return s.optics.fresnel == FresnelModel::Schlick; }},
+// The microscope: view, polars, stage, lenses, illuminant, focus.
+std::vector<Key> microscope_keys() {
+  return {
+    {"mode", [](Scene& s, const json& v) { s.mode = as_enum(v, kModes); },
+     [](const Scene& s) -> json { return enum_name(s.mode, kModes); }},
+    {"polarizer_deg", [](Scene& s, const json& v) { s.polarizer_deg = as_number(v); },
+     [](const Scene& s) -> json { return s.polarizer_deg; }},
+    {"analyzer_deg", [](Scene& s, const json& v) { s.analyzer_deg = as_number(v); },
+     [](const Scene& s) -> json { return s.analyzer_deg; }},
+    {"analyzer", [](Scene& s, const json& v) { s.analyzer_in = as_in_out(v); },
+     [](const Scene& s) -> json { return s.analyzer_in ? "in" : "out"; }},
+    {"stage_deg", [](Scene& s, const json& v) { s.stage_deg = as_number(v); },
+     [](const Scene& s) -> json { return s.stage_deg; }},
+    {"stage.x_mm", [](Scene& s, const json& v) { s.stage.x_mm = as_number(v); },
+     [](const Scene& s) -> json { return s.stage.x_mm; }},
+    {"stage.y_mm", [](Scene& s, const json& v) { s.stage.y_mm = as_number(v); },
+     [](const Scene& s) -> json { return s.stage.y_mm; }},
+    {"bertrand", [](Scene& s, const json& v) { s.bertrand_in = as_in_out(v); },
+     [](const Scene& s) -> json { return s.bertrand_in ? "in" : "out"; }},
+    {"illuminant",
+     [](Scene& s, const json& v) {
+       if (!parse_illuminant(as_string(v), s.illuminant)) throw BadValue{"expected D65 or A"};
+     },
+     [](const Scene& s) -> json { return std::string(illuminant_name(s.illuminant)); }},
+    {"objective.magnification", [](Scene& s, const json& v) { s.objective.magnification = as_number(v); },
+     [](const Scene& s) -> json { return s.objective.magnification; }},
+    {"objective.na", [](Scene& s, const json& v) { s.objective.na = as_number(v); },
+     [](const Scene& s) -> json { return s.objective.na; }},
+    {"eyepiece.field_number_mm", [](Scene& s, const json& v) { s.eyepiece.field_number_mm = as_number(v); },
+     [](const Scene& s) -> json { return s.eyepiece.field_number_mm; }},
+    {"condenser.na", [](Scene& s, const json& v) { s.condenser.na = as_number(v); },
+     [](const Scene& s) -> json { return s.condenser.na; }},
+    {"condenser.aperture_na", [](Scene& s, const json& v) { s.condenser.aperture_na = as_number(v); },
+     [](const Scene& s) -> json { return s.condenser.aperture_na; }},
+    {"focus_um", [](Scene& s, const json& v) { s.focus_um = as_number(v); },
+     [](const Scene& s) -> json { return s.focus_um; }},
   };
+}
+
+// The sample on the stage.
+std::vector<Key> sample_keys() {
+  return {
+    {"sample.present", [](Scene& s, const json& v) { s.sample_in = as_bool(v); },
+     [](const Scene& s) -> json { return s.sample_in; }},
+    {"sample.type", [](Scene& s, const json& v) { s.sample.type = as_enum(v, kSampleTypes); },
+     [](const Scene& s) -> json { return enum_name(s.sample.type, kSampleTypes); }},
+    {"sample.mineral",
+     [](Scene& s, const json& v) {
+       s.sample.mineral = as_string(v);
+       s.sample.crystal.reset();  // the latest choice of sample wins
+     },
+     [](const Scene& s) -> json { return s.sample.mineral; }},
+    {"sample.crystal",
+     [](Scene& s, const json& v) {
+       if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+         s.sample.crystal.reset();
+       else
+         s.sample.crystal = as_crystal(v);
+     },
+     [](const Scene& s) -> json {
+       return s.sample.crystal ? crystal_json(*s.sample.crystal) : json(nullptr);
+     }},
+    {"sample.thickness_um", [](Scene& s, const json& v) { s.sample.thickness_um = as_number(v); },
+     [](const Scene& s) -> json { return s.sample.thickness_um; }},
+    {"sample.optic_axis", [](Scene& s, const json& v) { s.sample.optic_axis = as_vec3(v); },
+     [](const Scene& s) -> json { return s.sample.optic_axis; }},
+    {"sample.x_axis", [](Scene& s, const json& v) { s.sample.x_axis = as_vec3(v); },
+     [](const Scene& s) -> json { return s.sample.x_axis; }},
+    {"sample.z_axis", [](Scene& s, const json& v) { s.sample.z_axis = as_vec3(v); },
+     [](const Scene& s) -> json { return s.sample.z_axis; }},
+    {"sample.cut",
+     [](Scene& s, const json& v) {
+       if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+         s.sample.cut.reset();
+       else
+         s.sample.cut = as_cut(v);
+     },
+     [](const Scene& s) -> json {
+       return s.sample.cut ? json{{"plane", s.sample.cut->plane}, {"north", s.sample.cut->north}}
+                           : json(nullptr);
+     }},
+    {"sample.section", [](Scene& s, const json& v) { s.sample.section = as_string(v); },
+     [](const Scene& s) -> json { return s.sample.section; }},
+    {"sample.medium", [](Scene& s, const json& v) { s.sample.medium = as_string(v); },
+     [](const Scene& s) -> json { return s.sample.medium; }},
+    // The EBSD map keys are written only when they differ from the default, so that the saved
+    // form (and image metadata) of every other scene stays as it was.
+    {"sample.phases", [](Scene& s, const json& v) { s.sample.phases = as_phases(v); },
+     [](const Scene& s) -> json { return s.sample.phases.empty() ? json(nullptr) : json(s.sample.phases); }},
+    {"sample.nonindexed", [](Scene& s, const json& v) { s.sample.nonindexed = as_enum(v, kNonIndexed); },
+     [](const Scene& s) -> json {
+       return s.sample.nonindexed == NonIndexed::Medium ? json(nullptr) : json(enum_name(s.sample.nonindexed, kNonIndexed));
+     }},
+    {"sample.medium_index",
+     [](Scene& s, const json& v) {
+       if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+         s.sample.medium_index.reset();
+       else
+         s.sample.medium_index = as_number(v);
+     },
+     [](const Scene& s) -> json { return s.sample.medium_index ? json(*s.sample.medium_index) : json(nullptr); }},
+    {"sample.orientation_seed",
+     [](Scene& s, const json& v) {
+       if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+         s.sample.orientation_seed.reset();
+       else
+         s.sample.orientation_seed = as_int(v);
+     },
+     [](const Scene& s) -> json { return s.sample.orientation_seed ? json(*s.sample.orientation_seed) : json(nullptr); }},
+    {"sample.seed",
+     [](Scene& s, const json& v) {
+       if (v.is_null() || (v.is_string() && lower_case(v.get<std::string>()) == "none"))
+         s.sample.seed.reset();
+       else
+         s.sample.seed = as_int(v);
+     },
+     [](const Scene& s) -> json { return s.sample.seed ? json(*s.sample.seed) : json(nullptr); }},
+  };
+}
+
+// The accessory slot, the render and the optics models.
+std::vector<Key> slot_render_optics_keys() {
+  return {
+    {"compensator", [](Scene& s, const json& v) { s.compensator = as_enum(v, kCompensators); },
+     [](const Scene& s) -> json { return enum_name(s.compensator, kCompensators); }},
+    {"compensator_position", [](Scene& s, const json& v) { s.compensator_position = as_number(v); },
+     [](const Scene& s) -> json { return s.compensator_position; }},
+    {"render.width", [](Scene& s, const json& v) { s.render.width = as_int(v); },
+     [](const Scene& s) -> json { return s.render.width; }},
+    {"render.height", [](Scene& s, const json& v) { s.render.height = as_int(v); },
+     [](const Scene& s) -> json { return s.render.height; }},
+    {"render.spp", [](Scene& s, const json& v) { s.render.spp = as_int(v); },
+     [](const Scene& s) -> json { return s.render.spp; }},
+    {"render.wavelengths", [](Scene& s, const json& v) { s.render.wavelengths = as_int(v); },
+     [](const Scene& s) -> json { return s.render.wavelengths; }},
+    {"render.single_wavelength_nm",
+     [](Scene& s, const json& v) { s.render.single_wavelength_nm = as_number(v); },
+     [](const Scene& s) -> json { return s.render.single_wavelength_nm; }},
+    {"render.tolerance", [](Scene& s, const json& v) { s.render.tolerance_de2000 = as_number(v); },
+     [](const Scene& s) -> json { return s.render.tolerance_de2000; }},
+    {"render.strategy", [](Scene& s, const json& v) { s.render.strategy = as_enum(v, kStrategies); },
+     [](const Scene& s) -> json { return enum_name(s.render.strategy, kStrategies); }},
+    {"render.native", [](Scene& s, const json& v) { s.render.native = as_on_off(v); },
+     [](const Scene& s) -> json { return s.render.native ? json("on") : json(nullptr); }},
+    {"render.exposure_ev", [](Scene& s, const json& v) { s.render.exposure_ev = as_number(v); },
+     [](const Scene& s) -> json { return s.render.exposure_ev != 0.0 ? json(s.render.exposure_ev) : json(nullptr); }},
+    {"render.vision",
+     [](Scene& s, const json& v) {
+       if (!parse_colour_vision(as_string(v), s.render.vision))
+         throw BadValue{"expected normal, protanopia, deuteranopia or tritanopia"};
+     },
+     [](const Scene& s) -> json {
+       return s.render.vision != ColourVision::Normal ? json(std::string(colour_vision_name(s.render.vision)))
+                                                       : json(nullptr);
+     }},
+    {"optics.lens_model", [](Scene& s, const json& v) { s.optics.lens_model = as_enum(v, kLensModels); },
+     [](const Scene& s) -> json { return enum_name(s.optics.lens_model, kLensModels); }},
+    {"optics.lens_depth", [](Scene& s, const json& v) { s.optics.lens_depth = as_int(v); },
+     [](const Scene& s) -> json { return s.optics.lens_depth; }},
+    {"optics.relief", [](Scene& s, const json& v) { s.optics.relief = as_on_off(v); },
+     [](const Scene& s) -> json { return s.optics.relief ? json(nullptr) : json("off"); }},
+    {"optics.schlick",  // a bool in files and --set: true is the Schlick approximation
+     [](Scene& s, const json& v) {
+       s.optics.fresnel = as_bool(v) ? FresnelModel::Schlick : FresnelModel::Exact;
+     },
+     [](const Scene& s) -> json { return s.optics.fresnel == FresnelModel::Schlick; }},
+  };
+}
+
+// Every key, in the order files are written.
+const std::vector<Key>& keys() {
+  static const std::vector<Key> k = [] {
+    std::vector<Key> all;
+    for (auto group : {microscope_keys, sample_keys, slot_render_optics_keys})
+      for (Key& key : group()) all.push_back(std::move(key));
+    return all;
+  }();
   return k;
 }
 
