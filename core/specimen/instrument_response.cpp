@@ -16,8 +16,11 @@ ResponseKind response_kind(const Scene& scene) {
 }
 
 bool response_serves(const Scene& rendered, const Scene& next) {
+  // The specimens compared first: response_kind may load (grow) a section, and a scene with another
+  // section or seed must not be grown here (the app asks this on its UI thread at every change).
+  if (!same_specimen_response(rendered, next)) return false;
   const ResponseKind k = response_kind(rendered);
-  return k != ResponseKind::None && response_kind(next) == k && same_specimen_response(rendered, next);
+  return k != ResponseKind::None && response_kind(next) == k;
 }
 
 InstrumentResponse::InstrumentResponse(ResponseProgress traced, ResponseCoverage coverage)
