@@ -105,6 +105,11 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
   EXPECT_TRUE(response_serves(traced, next));
   next.focus_um = traced.focus_um + 2.0;  // the specimen's response itself changes
   EXPECT_FALSE(response_serves(traced, next));
+  // Another section is not loaded to be compared (the app asks on its UI thread, and loading a
+  // rock grows it): a path that does not exist would throw if it were.
+  next = traced;
+  next.sample.section = (scratch_dir() / "no_such_section.json").string();
+  EXPECT_FALSE(response_serves(traced, next));
 
   const Scene figure = figure_scene();
   next = figure;
