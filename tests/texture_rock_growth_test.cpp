@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <iostream>
 #include <numeric>
@@ -101,6 +102,60 @@ TEST(GrownTiling, GridOwnerEqualsTheExhaustiveSearch) {
       EXPECT_GT(unreached, 0);  // the matrix shows between crystals
     else
       EXPECT_EQ(unreached, 0);  // holocrystalline
+  }
+}
+
+// The tiling keeps one face of each opposite pair and places templates itself (grown_tiling.h):
+// its owners must be those of the polyhedra themselves (growth_fraction and arrival_time on each
+// GrainGrowth), exactly, for a habit with paired faces, a ball and a shape without pairs; and a
+// tiling built from templates, rotations and sizes must be the one built from placed() copies.
+int owner_of_polyhedra(const std::vector<GrainGrowth>& v, bool capped, const glm::dvec2& p) {
+  int best = -1;
+  double best_t = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(v.size()); ++i) {
+    const double s = growth_fraction(v[i], p);
+    const double t = capped && s > 1.0 ? std::numeric_limits<double>::infinity() : arrival_time(v[i], s);
+    if (t < best_t) {
+      best_t = t;
+      best = i;
+    }
+  }
+  return best;
+}
+
+TEST(GrownTiling, CompactShapesGiveThePolyhedraOwners) {
+  std::vector<GrainGrowth> crystals = random_crystals(400, 3.0, 21);
+  for (int i = 0; i < 400; i += 7) crystals[i].shape = sphere_polyhedron(0.3);
+  for (int i = 3; i < 400; i += 11) {  // the same faces in another order: opposites no longer next to each other
+    CrystalPolyhedron& p = crystals[i].shape;
+    if (p.normals.empty()) continue;  // a ball
+    std::rotate(p.normals.begin(), p.normals.begin() + 1, p.normals.end());
+    std::rotate(p.support_mm.begin(), p.support_mm.begin() + 1, p.support_mm.end());
+  }
+  const MineralCrystallography* mc = find_mineral_crystallography("plagioclase");
+  const CrystalPolyhedron unit = habit_template(mc, 4.0);
+  const std::vector<GrainGrowth> plain = random_crystals(400, 3.0, 5);
+  for (const bool capped : {true, false}) {
+    const GrownTiling t(crystals, capped, 3.0, 3.0);
+    const GrownTiling placed_tiling(
+        plain.size(),
+        [&](std::size_t i) {
+          const auto e = uniform_euler_deg(5, i);
+          PlacedGrowth g;
+          g.nucleus_mm = plain[i].nucleus_mm;
+          g.from = plain[i].from;
+          g.unit = &unit;
+          g.L = random_rotation(i + 5);
+          g.size_mm = 0.1 + 0.4 * (e[0] / 360.0);
+          return g;
+        },
+        capped, 3.0, 3.0);
+    for (int j = 0; j < 90; ++j)
+      for (int i = 0; i < 90; ++i) {
+        const glm::dvec2 p{(i + 0.37) / 90 * 3.0 - 1.5, (j + 0.61) / 90 * 3.0 - 1.5};
+        ASSERT_EQ(t.owner(p), owner_of_polyhedra(crystals, capped, p)) << capped << " at " << p.x << "," << p.y;
+        ASSERT_EQ(placed_tiling.owner(p), owner_of_polyhedra(plain, capped, p)) << capped << " at " << p.x << "," << p.y;
+      }
   }
 }
 
@@ -370,9 +425,8 @@ std::vector<double> triple_junction_angles_deg(const GrownTiling& t, double wind
       if (o.size() == 3) triples.insert({*o.begin(), *std::next(o.begin()), *o.rbegin()});
     }
   std::vector<double> angles;
-  const auto& c = t.crystals();
   for (const auto& tr : triples) {
-    const glm::dvec3 a = c[tr[0]].nucleus_mm, b = c[tr[1]].nucleus_mm, d = c[tr[2]].nucleus_mm;
+    const glm::dvec3 a = t.nucleus_mm(tr[0]), b = t.nucleus_mm(tr[1]), d = t.nucleus_mm(tr[2]);
     // 2(b − a)·p = |b|² − |a|² and the same for d, p in the plane z = 0.
     const double m11 = 2 * (b.x - a.x), m12 = 2 * (b.y - a.y), r1 = glm::dot(b, b) - glm::dot(a, a);
     const double m21 = 2 * (d.x - a.x), m22 = 2 * (d.y - a.y), r2 = glm::dot(d, d) - glm::dot(a, a);

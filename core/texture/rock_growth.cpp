@@ -179,16 +179,24 @@ glm::dmat3 crystal_frame(const GrownCrystal& c) {
 }
 
 // A granoblastic rock's grains are balls (their neighbours set their boundaries), others their
-// habit polyhedra.
+// habit polyhedra, placed from their phase's template as the tiling reads them (no copies).
 GrownTiling tiling_of(const RockRecipe& r, const std::vector<GrownCrystal>& crystals, const std::vector<PhaseModel>& models) {
-  std::vector<GrainGrowth> g(crystals.size());
-  for (std::size_t i = 0; i < crystals.size(); ++i) {
-    const GrownCrystal& c = crystals[i];
-    g[i] = {c.nucleus_mm, c.from, 1.0,
-            r.granoblastic ? sphere_polyhedron(c.size_mm) : placed(models[c.phase].unit, crystal_frame(c), c.size_mm),
-            r.phases[c.phase].porphyroblast};
-  }
-  return GrownTiling(std::move(g), !r.matrix_mineral.empty(), r.width_mm, r.height_mm);
+  static const CrystalPolyhedron unit_ball = sphere_polyhedron(1.0);  // × size: sphere_polyhedron(size), bit for bit
+  return GrownTiling(
+      crystals.size(),
+      [&](std::size_t i) {
+        const GrownCrystal& c = crystals[i];
+        PlacedGrowth g;
+        g.nucleus_mm = c.nucleus_mm;
+        g.from = c.from;
+        g.to = 1.0;
+        g.unit = r.granoblastic ? &unit_ball : &models[c.phase].unit;
+        if (!r.granoblastic) g.L = crystal_frame(c);
+        g.size_mm = c.size_mm;
+        g.overgrows = r.phases[c.phase].porphyroblast;
+        return g;
+      },
+      !r.matrix_mineral.empty(), r.width_mm, r.height_mm);
 }
 
 // Owner counts on an nx × ny raster of point centres; the last entry counts the matrix. Rows are
@@ -201,8 +209,8 @@ std::vector<std::size_t> owner_counts(const RockRecipe& r, const GrownTiling& t,
       owners[static_cast<std::size_t>(j) * nx + i] = t.owner(p);
     }
   });
-  std::vector<std::size_t> n(t.crystals().size() + 1, 0);
-  for (const int o : owners) ++n[o < 0 ? t.crystals().size() : static_cast<std::size_t>(o)];
+  std::vector<std::size_t> n(t.size() + 1, 0);
+  for (const int o : owners) ++n[o < 0 ? t.size() : static_cast<std::size_t>(o)];
   return n;
 }
 
