@@ -5,10 +5,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -140,15 +145,14 @@ void SectionMap::finish() {
     cell_grains_.clear();
     return;
   }
-  std::vector<GrainGrowth> crystals;
   for (std::size_t i = 0; i < grains.size(); ++i) {
     if (grains[i].matrix) matrix_grain_ = static_cast<int>(i);
-    if (!grains[i].growth) continue;
-    crystals.push_back(*grains[i].growth);
-    grown_grain_.push_back(static_cast<int>(i));
+    if (grains[i].growth) grown_grain_.push_back(static_cast<int>(i));
   }
-  if (!crystals.empty()) {
-    grown_ = std::make_shared<const GrownTiling>(std::move(crystals), matrix_grain_ >= 0, width_mm, height_mm);
+  if (!grown_grain_.empty()) {
+    grown_ = std::make_shared<const GrownTiling>(
+        grown_grain_.size(), [&](std::size_t k) -> const GrainGrowth& { return *grains[grown_grain_[k]].growth; },
+        matrix_grain_ >= 0, width_mm, height_mm);
     return;
   }
   // Grid over the extent with about two cells per grain, at most 1024 a side.
@@ -539,22 +543,40 @@ void read_legacy_grain(const JsonReader& gr, SectionGrain& g) {
   }
 }
 
-// Habit templates by mineral and aspect, for one file: a grown rock places a few templates on up to
-// 10⁵–10⁶ grains, and a template's circumradius (every triple of its faces) costs ~10 µs.
-class HabitTemplates {
+// What a reader looks up again and again, for one file (and one thread): habit templates by
+// mineral and aspect (a grown rock places a few templates on up to 10⁵–10⁶ grains, and a
+// template's circumradius, every triple of its faces, costs ~10 µs) and minerals by name (each
+// lookup canonicalises the name, a composition's number printed and parsed: ~1 µs, several a
+// grain). The library's answers for a name never change; a name it refuses is asked again, so
+// the fault is named as without the cache.
+class GrainLookups {
  public:
   const CrystalPolyhedron& get(const MineralCrystallography* mc, double aspect) {
     auto [it, fresh] = templates_.try_emplace({mc, aspect});
     if (fresh) it->second = habit_template(mc, aspect);
     return it->second;
   }
+  const Crystal& mineral(const JsonReader& r, const char* key, const std::string& name) {
+    if (const auto it = crystals_.find(name); it != crystals_.end()) return *it->second;
+    const Crystal& c = known_mineral(r, key, name);
+    crystals_.emplace(name, &c);
+    return c;
+  }
+  const MineralCrystallography* crystallography(const std::string& name) {
+    if (const auto it = crystallography_.find(name); it != crystallography_.end()) return it->second;
+    const MineralCrystallography* mc = find_mineral_crystallography(name);
+    crystallography_.emplace(name, mc);
+    return mc;
+  }
 
  private:
   std::map<std::pair<const MineralCrystallography*, double>, CrystalPolyhedron> templates_;
+  std::unordered_map<std::string, const Crystal*> crystals_;
+  std::unordered_map<std::string, const MineralCrystallography*> crystallography_;
 };
 
-void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, HabitTemplates& templates) {
-  const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
+void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, GrainLookups& templates) {
+  const MineralCrystallography* mc = templates.crystallography(g.mineral);
   const bool has_lattice = g.lattice_to_section.has_value() && mc;
   const glm::dmat3 L = has_lattice ? *g.lattice_to_section : glm::dmat3(1.0);
   const auto c = numbers(gr, "centre_mm", 2);
@@ -612,11 +634,11 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, Habi
     for (const JsonReader& z : gr.objects("zones", 1)) {
       SectionZone zone;
       zone.mineral = z.require<std::string>("mineral");
-      zone.crystal = &known_mineral(z, "mineral", zone.mineral);
+      zone.crystal = &templates.mineral(z, "mineral", zone.mineral);
       zone.outer_fraction = z.require<double>("outer_fraction", Range::open_closed(0, 1e308));
       if (zone.outer_fraction <= prev) z.fail("outer_fraction", "zone radii must increase outward");
       prev = zone.outer_fraction;
-      const MineralCrystallography* zc = find_mineral_crystallography(zone.mineral);
+      const MineralCrystallography* zc = templates.crystallography(zone.mineral);
       zone.orientation = has_lattice && zc ? indicatrix_in_section(zc, L) : g.orientation;
       g.zones.push_back(zone);
     }
@@ -811,12 +833,12 @@ SectionMap section_header(const JsonReader& r, const std::string& path) {
   return m;
 }
 
-// One grain object, appended to m.grains.
-void read_section_grain(const JsonReader& gr, SectionMap& m, HabitTemplates& templates) {
+// One grain object of section m (its header read).
+SectionGrain read_section_grain(const JsonReader& gr, const SectionMap& m, GrainLookups& templates) {
   SectionGrain g;
   g.mineral = gr.require<std::string>("mineral");
-  g.crystal = &known_mineral(gr, "mineral", g.mineral);
-  const MineralCrystallography* mc = find_mineral_crystallography(g.mineral);
+  g.crystal = &templates.mineral(gr, "mineral", g.mineral);
+  const MineralCrystallography* mc = templates.crystallography(g.mineral);
   try {
     if (gr.has("euler_deg")) {
       const auto e = numbers(gr, "euler_deg", 3);
@@ -847,40 +869,49 @@ void read_section_grain(const JsonReader& gr, SectionMap& m, HabitTemplates& tem
   if (!g.matrix) read_vein(gr, g);
   if (!g.matrix) read_inclusions(gr, g);
   if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
-  m.grains.push_back(std::move(g));
+  return g;
 }
 
 SectionMap parse_section(const json& j, const std::string& path) {
   if (!j.is_object()) throw InputError(path, "", "", "a thin-section file must hold a JSON object");
   const JsonReader r(j, path);
   SectionMap m = section_header(r, path);
-  HabitTemplates templates;
-  for (const JsonReader& gr : r.objects("grains", 1)) read_section_grain(gr, m, templates);
+  GrainLookups templates;
+  for (const JsonReader& gr : r.objects("grains", 1)) m.grains.push_back(read_section_grain(gr, m, templates));
   check_grown(r, m);
   m.finish();
   return m;
 }
 
 // A grown rock's section, each grain parsed as its JSON is written (rock_growth.h): the same map
-// as section_from_json(rock_section_json(…)) without the whole file in memory at once.
+// as section_from_json(rock_section_json(…)) without the whole file in memory at once. Blocks of
+// grains are written and read in parallel (each thread its own habit templates, the same shapes);
+// a fault is the first in file order, as the serial reader would throw it.
 SectionMap parse_grown_rock(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed,
                             std::optional<std::uint64_t> orientation_seed, const std::string& path) {
   const json header = rock_section_header_json(recipe, seed);
   const JsonReader r(header, path);
   SectionMap m = section_header(r, path);
-  HabitTemplates templates;
-  std::uint64_t index = 0;
-  for_each_rock_grain_json(recipe, growth, seed, [&](const json& grain) {
-    const std::string prefix = "grains[" + std::to_string(index) + "]";
-    if (!orientation_seed) {
-      read_section_grain(JsonReader(grain, path, prefix), m, templates);
-    } else {
-      json turned = grain;
-      reorient_section_grain(turned, *orientation_seed, index);
-      read_section_grain(JsonReader(turned, path, prefix), m, templates);
+  const RockGrainsJson grains(recipe, growth, seed);
+  m.grains.resize(grains.size());
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (grains.size() + kBlock - 1) / kBlock;
+  std::vector<std::exception_ptr> fault(blocks);
+  tbb::enumerable_thread_specific<GrainLookups> templates;
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    GrainLookups& mine = templates.local();
+    try {
+      for (std::size_t k = b * kBlock; k < std::min(grains.size(), (b + 1) * kBlock); ++k) {
+        json grain = grains.grain(k);
+        if (orientation_seed) reorient_section_grain(grain, *orientation_seed, k);
+        m.grains[k] = read_section_grain(JsonReader(grain, path, "grains[" + std::to_string(k) + "]"), m, mine);
+      }
+    } catch (...) {
+      fault[b] = std::current_exception();
     }
-    ++index;
   });
+  for (const std::exception_ptr& f : fault)
+    if (f) std::rethrow_exception(f);
   if (m.grains.empty()) throw InputError(path, "grains", "[]", "expected an array of at least 1 objects");
   check_grown(r, m);
   m.finish();

@@ -97,9 +97,14 @@ GrownTiling::Shape shape_record(const glm::dvec3& nucleus, double from, double t
 }  // namespace
 
 GrownTiling::GrownTiling(const std::vector<GrainGrowth>& crystals, bool capped, double width_mm, double height_mm)
+    : GrownTiling(
+          crystals.size(), [&](std::size_t i) -> const GrainGrowth& { return crystals[i]; }, capped, width_mm, height_mm) {}
+
+GrownTiling::GrownTiling(std::size_t n, const std::function<const GrainGrowth&(std::size_t)>& crystal, bool capped,
+                         double width_mm, double height_mm)
     : capped_(capped), width_mm_(width_mm), height_mm_(height_mm) {
-  fill_shapes(crystals.size(), shapes_, faces_, [&](std::size_t i, std::vector<glm::dvec4>& faces) {
-    const GrainGrowth& g = crystals[i];
+  fill_shapes(n, shapes_, faces_, [&](std::size_t i, std::vector<glm::dvec4>& faces) {
+    const GrainGrowth& g = crystal(i);
     const CrystalPolyhedron& p = g.shape;
     return shape_record(
         g.nucleus_mm, g.from, g.to, g.overgrows, p.normals.size(), [&](std::size_t f) { return p.normals[f]; },

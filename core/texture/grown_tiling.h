@@ -62,6 +62,9 @@ class GrownTiling {
  public:
   // Builds the lookup grid over the section's extent (centred on the origin).
   GrownTiling(const std::vector<GrainGrowth>& crystals, bool capped, double width_mm, double height_mm);
+  // The same from n crystals held elsewhere (a section's grains: no copies).
+  GrownTiling(std::size_t n, const std::function<const GrainGrowth&(std::size_t)>& crystal, bool capped,
+              double width_mm, double height_mm);
   // The same from n crystals placed from templates (crystal(i) is called once per crystal, from
   // several threads).
   GrownTiling(std::size_t n, const std::function<PlacedGrowth(std::size_t)>& crystal, bool capped, double width_mm,

@@ -432,34 +432,60 @@ nlohmann::json rock_section_header_json(const RockRecipe& r, std::uint64_t seed)
                          ". " + r.source}};
 }
 
+namespace {
+
+constexpr std::uint64_t kGrainRandomSeed = 0x5B9A1Full;
+
+// The grain of crystal c, the written-th of the file; draws from rng only for the phase's
+// subgrains, alteration and inclusions.
+nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, std::uint64_t seed, std::size_t written, Random& rng) {
+  const PhaseRecipe& ph = r.phases[c.phase];
+  nlohmann::json j = {{"mineral", ph.mineral},
+                      {"centre_mm", {c.nucleus_mm.x, c.nucleus_mm.y}},
+                      {"size_mm", c.size_mm},
+                      {"euler_deg", {c.euler_deg[0], c.euler_deg[1], c.euler_deg[2]}},
+                      {"growth", {{"nucleus_z_mm", c.nucleus_mm.z}, {"from", c.from}, {"to", 1.0}}}};
+  if (r.granoblastic || ph.rounded) j["growth"]["shape"] = "sphere";
+  if (ph.porphyroblast) j["growth"]["overgrows"] = true;
+  if (ph.aspect) j["aspect"] = *ph.aspect;
+  if (ph.zoning) j["zones"] = zones_json(ph);
+  if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
+  if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
+  if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
+    // The secondary mineral in a random orientation of its own (it grew in the cracks).
+    const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
+    j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
+  }
+  if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written, rng);
+  return j;
+}
+
+}  // namespace
+
+RockGrainsJson::RockGrainsJson(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed)
+    : recipe_(r), growth_(g), seed_(seed) {
+  Random rng(splitmix64(seed ^ kGrainRandomSeed));
+  for (std::size_t i = 0; i < g.crystals.size(); ++i) {
+    const GrownCrystal& c = g.crystals[i];
+    if (!(c.area_mm2 > 0.0)) continue;
+    random_state_.push_back(rng.state);
+    const PhaseRecipe& ph = r.phases[c.phase];
+    if (ph.undulose || ph.alteration || ph.inclusions) grain_json(r, c, seed, crystal_.size(), rng);  // its draws
+    crystal_.push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+nlohmann::json RockGrainsJson::grain(std::size_t k) const {
+  if (k == crystal_.size()) return {{"mineral", recipe_.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}};
+  Random rng(0);
+  rng.state = random_state_[k];
+  return grain_json(recipe_, growth_.crystals[crystal_[k]], seed_, k, rng);
+}
+
 void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed,
                               const std::function<void(const nlohmann::json&)>& grain) {
-  Random rng(splitmix64(seed ^ 0x5B9A1Full));
-  std::size_t written = 0;
-  for (const GrownCrystal& c : g.crystals) {
-    if (!(c.area_mm2 > 0.0)) continue;
-    const PhaseRecipe& ph = r.phases[c.phase];
-    nlohmann::json j = {{"mineral", ph.mineral},
-                        {"centre_mm", {c.nucleus_mm.x, c.nucleus_mm.y}},
-                        {"size_mm", c.size_mm},
-                        {"euler_deg", {c.euler_deg[0], c.euler_deg[1], c.euler_deg[2]}},
-                        {"growth", {{"nucleus_z_mm", c.nucleus_mm.z}, {"from", c.from}, {"to", 1.0}}}};
-    if (r.granoblastic || ph.rounded) j["growth"]["shape"] = "sphere";
-    if (ph.porphyroblast) j["growth"]["overgrows"] = true;
-    if (ph.aspect) j["aspect"] = *ph.aspect;
-    if (ph.zoning) j["zones"] = zones_json(ph);
-    if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
-    if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
-    if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
-      // The secondary mineral in a random orientation of its own (it grew in the cracks).
-      const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
-      j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
-    }
-    if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written, rng);
-    grain(j);
-    ++written;
-  }
-  if (!r.matrix_mineral.empty()) grain({{"mineral", r.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}});
+  const RockGrainsJson grains(r, g, seed);
+  for (std::size_t k = 0; k < grains.size(); ++k) grain(grains.grain(k));
 }
 
 nlohmann::json rock_section_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed) {

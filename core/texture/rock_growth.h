@@ -77,4 +77,22 @@ nlohmann::json rock_section_header_json(const RockRecipe& recipe, std::uint64_t 
 void for_each_rock_grain_json(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed,
                               const std::function<void(const nlohmann::json&)>& grain);
 
+// The same grains by index, for a reader that parses them in parallel: grain(k) may be asked from
+// any thread in any order and is the k-th grain for_each_rock_grain_json writes. A serial pass
+// first notes each grain's crystal and where its random draws (subgrains, alteration, inclusions)
+// start in the file's one random sequence.
+class RockGrainsJson {
+ public:
+  RockGrainsJson(const RockRecipe& recipe, const RockGrowth& growth, std::uint64_t seed);
+  std::size_t size() const { return crystal_.size() + (recipe_.matrix_mineral.empty() ? 0 : 1); }
+  nlohmann::json grain(std::size_t k) const;
+
+ private:
+  const RockRecipe& recipe_;
+  const RockGrowth& growth_;
+  std::uint64_t seed_;
+  std::vector<std::uint32_t> crystal_;      // per grain but the matrix: its crystal
+  std::vector<std::uint64_t> random_state_;  // per grain: the random sequence's state before its draws
+};
+
 }  // namespace pmsim
