@@ -21,6 +21,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kUncappedCover = 4.0;
 // Crystals per parallel task: a few thousand gauge windows, well above TBB's scheduling cost.
 constexpr std::size_t kCrystalBlock = 4096;
+// The grid nodes' growth fractions are computed incrementally (window()): off the exact gauge by a
+// few ulps of values ≲ 10², far below this relative allowance, which the bounds take against
+// themselves (the upper ones up, the lower ones down).
+constexpr double kNodeRounding = 1e-12;
 }  // namespace
 
 double growth_fraction(const GrainGrowth& g, const glm::dvec2& p) {
@@ -141,6 +145,22 @@ double GrownTiling::fraction(int i, const glm::dvec2& p) const {
   return g;
 }
 
+// True only where fraction(i, p) > 1: some face's n·x exceeds its h by more than the rounding
+// of n·x/h. A multiplication a face, where the fraction divides: most of a cell's candidates do not
+// reach a given point of it.
+bool GrownTiling::beyond(int i, const glm::dvec2& p) const {
+  const Shape& c = shapes_[static_cast<std::size_t>(i)];
+  if (c.faces == 0) return false;
+  const glm::dvec3 x(p.x - c.nucleus_mm.x, p.y - c.nucleus_mm.y, -c.nucleus_mm.z);
+  const glm::dvec4* f = faces_.data() + c.first_face;
+  bool out = false;
+  for (int k = 0; k < c.faces; ++k) {
+    const double d = glm::dot(glm::dvec3(f[k]), x), limit = f[k].w * (1.0 + 1e-9);
+    out = out || d > limit || (c.paired && -d > limit);
+  }
+  return out;
+}
+
 // arrival_time of the crystal, the same number.
 double GrownTiling::arrival_at(int i, double s) const {
   constexpr double kOvergrowthLead = 1e3;
@@ -149,6 +169,7 @@ double GrownTiling::arrival_at(int i, double s) const {
 }
 
 double GrownTiling::arrival(int i, const glm::dvec2& p) const {
+  if (capped_ && beyond(i, p)) return kInf;
   const double s = fraction(i, p);
   return capped_ && s > 1.0 ? kInf : arrival_at(i, s);
 }
@@ -200,10 +221,32 @@ void GrownTiling::window(int i, double s_reach, const glm::dvec2& origin, NodeWi
   auto cell = [&](double v, double o, int n) { return std::clamp(static_cast<int>(std::floor((v - o) / cell_mm_)), 0, n - 1); };
   w.x0 = cell(g.nucleus_mm.x - reach, origin.x, cells_x_), w.x1 = cell(g.nucleus_mm.x + reach, origin.x, cells_x_);
   w.y0 = cell(g.nucleus_mm.y - reach, origin.y, cells_y_), w.y1 = cell(g.nucleus_mm.y + reach, origin.y, cells_y_);
-  w.s.resize(static_cast<std::size_t>(w.x1 - w.x0 + 2) * (w.y1 - w.y0 + 2));
-  std::size_t k = 0;
-  for (int y = w.y0; y <= w.y1 + 1; ++y)
-    for (int x = w.x0; x <= w.x1 + 1; ++x) w.s[k++] = fraction(i, origin + cell_mm_ * glm::dvec2(x, y));
+  const int nx = w.x1 - w.x0 + 2, ny = w.y1 - w.y0 + 2;
+  w.s.resize(static_cast<std::size_t>(nx) * ny);
+  if (g.faces == 0) {
+    std::size_t k = 0;
+    for (int y = w.y0; y <= w.y1 + 1; ++y)
+      for (int x = w.x0; x <= w.x1 + 1; ++x) w.s[k++] = fraction(i, origin + cell_mm_ * glm::dvec2(x, y));
+    return;
+  }
+  // Each face's n·x/h is linear over the grid: its value at the first node plus steps along x and
+  // y (bounds only: the few ulps this differs from fraction() are within kNodeRounding).
+  std::fill(w.s.begin(), w.s.end(), 0.0);
+  const glm::dvec2 first = origin + cell_mm_ * glm::dvec2(w.x0, w.y0);
+  const glm::dvec3 x0(first.x - g.nucleus_mm.x, first.y - g.nucleus_mm.y, -g.nucleus_mm.z);
+  const glm::dvec4* f = faces_.data() + g.first_face;
+  for (int k = 0; k < g.faces; ++k) {
+    const glm::dvec3 n(f[k]);
+    const double base = glm::dot(n, x0) / f[k].w, ax = n.x * cell_mm_ / f[k].w, ay = n.y * cell_mm_ / f[k].w;
+    for (int y = 0; y < ny; ++y) {
+      double* row = w.s.data() + static_cast<std::size_t>(y) * nx;
+      const double b = base + y * ay;
+      if (g.paired)
+        for (int x = 0; x < nx; ++x) row[x] = std::max(row[x], std::abs(b + x * ax));
+      else
+        for (int x = 0; x < nx; ++x) row[x] = std::max(row[x], b + x * ax);
+    }
+  }
 }
 
 // Upper bounds per cell: arrival is quasi-convex in p (a nondecreasing function of a convex
@@ -222,7 +265,8 @@ std::vector<double> GrownTiling::cell_upper_bounds(const glm::dvec2& origin) con
       window(i, s_cover, origin, w);
       for (int y = w.y0; y <= w.y1; ++y)
         for (int x = w.x0; x <= w.x1; ++x) {
-          const double s = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
+          double s = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
+          s += kNodeRounding * (1.0 + s);  // at least the exact corner value
           if (s > s_cover) continue;  // the section of its shape grown that far does not cover this cell
           const double t = arrival_at(i, s);
           double& u = upper[static_cast<std::size_t>(y) * cells_x_ + x];
@@ -256,7 +300,8 @@ void GrownTiling::candidate_cells(int i, const glm::dvec2& origin, const std::ve
       const glm::dvec2 lo = origin + cell_mm_ * glm::dvec2(x, y), hi = lo + glm::dvec2(cell_mm_);
       const double dx = std::max({lo.x - g.nucleus_mm.x, 0.0, g.nucleus_mm.x - hi.x});
       const double dy = std::max({lo.y - g.nucleus_mm.y, 0.0, g.nucleus_mm.y - hi.y});
-      const double corner = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
+      double corner = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
+      corner -= kNodeRounding * (1.0 + corner);  // at most the exact corner value
       const double s_low = std::max(std::sqrt(dx * dx + dy * dy + g.nucleus_mm.z * g.nucleus_mm.z) / R, corner - diag / h_min);
       if (capped_ && s_low > 1.0 + 1e-9) continue;
       const double lower = arrival_at(i, s_low);

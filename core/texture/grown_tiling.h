@@ -95,6 +95,7 @@ class GrownTiling {
   struct NodeWindow;
   void build();
   double fraction(int i, const glm::dvec2& p) const;
+  bool beyond(int i, const glm::dvec2& p) const;
   double arrival_at(int i, double s) const;
   double arrival(int i, const glm::dvec2& p) const;
   void window(int i, double s_reach, const glm::dvec2& origin, NodeWindow& w) const;

@@ -142,10 +142,13 @@ std::vector<GrownCrystal> sample_phase(const RockRecipe& r, int k, const PhaseMo
     c.size_mm = cut_crystal_size(ph.csd, rng);
     c.nucleus_mm = {(rng.uniform() - 0.5) * w, (rng.uniform() - 0.5) * h, (2.0 * rng.uniform() - 1.0) * R * c.size_mm};
     c.from = 1.0 - c.size_mm / m.rate_per_time;
-    c.euler_deg = uniform_euler_deg(phase_seed, i);
-    if (ph.fabric) c.euler_deg = aligned(c.euler_deg, *ph.fabric, m.fabric_axis, rng);
+    if (ph.fabric) c.euler_deg = aligned(uniform_euler_deg(phase_seed, i), *ph.fabric, m.fabric_axis, rng);
     c.twinned = ph.twin && rng.uniform() < ph.twin->fraction;
   }
+  // Without a fabric the orientations draw nothing from rng: by index, in parallel (a microlite
+  // population is a million of them).
+  if (!ph.fabric)
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { out[i].euler_deg = uniform_euler_deg(phase_seed, i); });
   return out;
 }
 
@@ -329,9 +332,14 @@ DrawnRock calibrate(const RockRecipe& r, const std::vector<PhaseModel>& models, 
   std::vector<double> exponent(r.phases.size(), 1.0), last_error(r.phases.size(), 0.0);
   for (out.rounds = 1;; ++out.rounds) {
     d.crystals.clear();
-    for (std::size_t k = 0; k < r.phases.size(); ++k) {
-      auto c = sample_phase(r, static_cast<int>(k), models[k], out.density_per_mm3[k], seed);
+    // Each phase has its own random sequence: drawn side by side, joined in phase order.
+    std::vector<std::vector<GrownCrystal>> phases(r.phases.size());
+    tbb::parallel_for(std::size_t(0), r.phases.size(), [&](std::size_t k) {
+      phases[k] = sample_phase(r, static_cast<int>(k), models[k], out.density_per_mm3[k], seed);
+    });
+    for (std::vector<GrownCrystal>& c : phases) {
       d.crystals.insert(d.crystals.end(), c.begin(), c.end());
+      std::vector<GrownCrystal>().swap(c);
     }
     pack_rounded(r, d.crystals);
     d.tiling = tiling_of(r, d.crystals, models);
