@@ -294,15 +294,17 @@ void GrownTiling::candidate_cells(int i, const glm::dvec2& origin, const std::ve
   const double s_beyond = u_max == kInf ? 1e6 : std::max(0.0, (u_max - g.from) / span);
   const double s_reach = capped_ ? 1.0 : (g.overgrows ? std::max(1.0, s_beyond) : s_beyond);
   window(i, s_reach, origin, w);
-  const double h_min = g.h_min;
+  const double lipschitz_drop = diag / g.h_min;
   for (int y = w.y0; y <= w.y1; ++y)
     for (int x = w.x0; x <= w.x1; ++x) {
+      double corner = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
+      corner -= kNodeRounding * (1.0 + corner);  // at most the exact corner value
+      const double s_faces = corner - lipschitz_drop;
+      if (capped_ && s_faces > 1.0 + 1e-9) continue;  // before the distance's square root
       const glm::dvec2 lo = origin + cell_mm_ * glm::dvec2(x, y), hi = lo + glm::dvec2(cell_mm_);
       const double dx = std::max({lo.x - g.nucleus_mm.x, 0.0, g.nucleus_mm.x - hi.x});
       const double dy = std::max({lo.y - g.nucleus_mm.y, 0.0, g.nucleus_mm.y - hi.y});
-      double corner = std::max({w.at(x, y), w.at(x + 1, y), w.at(x, y + 1), w.at(x + 1, y + 1)});
-      corner -= kNodeRounding * (1.0 + corner);  // at most the exact corner value
-      const double s_low = std::max(std::sqrt(dx * dx + dy * dy + g.nucleus_mm.z * g.nucleus_mm.z) / R, corner - diag / h_min);
+      const double s_low = std::max(std::sqrt(dx * dx + dy * dy + g.nucleus_mm.z * g.nucleus_mm.z) / R, s_faces);
       if (capped_ && s_low > 1.0 + 1e-9) continue;
       const double lower = arrival_at(i, s_low);
       const int c = y * cells_x_ + x;
