@@ -472,8 +472,11 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
   nlohmann::json frame_stats = nlohmann::json::array(), response_stats;
   std::optional<pmsim::InstrumentResponse> response;
   if (one_response) {
-    const bool figure = pmsim::response_kind(frames[0]) == pmsim::ResponseKind::Figure;
-    progress.begin(figure ? "figure response" : std::string("response (") + (disc ? "disc" : "field") + ")",
+    const pmsim::ResponseKind kind = pmsim::response_kind(frames[0]);
+    const bool probed = kind == pmsim::ResponseKind::Figure || kind == pmsim::ResponseKind::Flat;
+    progress.begin(kind == pmsim::ResponseKind::Figure ? "figure response"
+                   : kind == pmsim::ResponseKind::Flat ? "flat response"
+                                                       : std::string("response (") + (disc ? "disc" : "field") + ")",
                    frames[0].render.tolerance_de2000, progress_cap(frames[0]));
     const pmsim::Scene& first = frames[0];
     response = pmsim::render_instrument_response(
@@ -493,7 +496,7 @@ int run_sweep(const Args& args, const Sweep& sw, const OutPattern& pattern, cons
                       {"converged", st.converged},
                       {"stopped", st.stopped},
                       {"model_report", st.model_report}};
-    if (figure)
+    if (probed)
       response_stats["wavelengths"] = st.wavelengths;
     else
       response_stats["samples_per_pixel"] = st.samples_per_pixel;

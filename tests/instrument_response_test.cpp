@@ -82,8 +82,15 @@ TEST(InstrumentResponse, KindFollowsTheViewAndTheSlot) {
   EXPECT_EQ(response_kind(traced), ResponseKind::Traced);
   traced.compensator = Compensator::Gypsum;  // applied to the traced response
   EXPECT_EQ(response_kind(traced), ResponseKind::Traced);
-  traced.optics.relief = false;  // the flat section image: rendered per setting
+  traced.optics.relief = false;  // the flat section image: its own probes, but not with an accessory
   EXPECT_EQ(response_kind(traced), ResponseKind::None);
+  traced.compensator = Compensator::None;
+  EXPECT_EQ(response_kind(traced), ResponseKind::Flat);
+  Scene plate = traced;  // one evaluation for the whole field: rendered per setting
+  plate.sample.type = SampleType::Plate;
+  plate.sample.mineral = "quartz";
+  plate.sample.thickness_um = 30.0;
+  EXPECT_EQ(response_kind(plate), ResponseKind::None);
 
   Scene figure = figure_scene();
   EXPECT_EQ(response_kind(figure), ResponseKind::Figure);
@@ -121,9 +128,15 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
 
   Scene flat = traced;
   flat.optics.relief = false;
-  EXPECT_FALSE(response_serves(flat, flat));  // no response: every setting is rendered
+  next = flat;
+  next.stage_deg = 50.0;
+  EXPECT_TRUE(response_serves(flat, next));
+  next.compensator = Compensator::Gypsum;
+  EXPECT_FALSE(response_serves(flat, next));
+  EXPECT_FALSE(response_serves(next, next));  // no response: every setting is rendered
+  EXPECT_FALSE(response_serves(traced, flat));
   EXPECT_FALSE(response_serves(traced, figure));
-  EXPECT_THROW(render_instrument_response(flat, ResponseCoverage::Field), std::invalid_argument);
+  EXPECT_THROW(render_instrument_response(next, ResponseCoverage::Field), std::invalid_argument);
 }
 
 TEST(InstrumentResponse, TracedComposesAsTheSingleRender) {

@@ -114,7 +114,7 @@ void RenderFeed::run() {
       lock.lock();
       grain_running_ = false;
       cv_.notify_all();
-    } else if (!failed && kind == ResponseKind::Figure) {
+    } else if (!failed && (kind == ResponseKind::Figure || kind == ResponseKind::Flat)) {
       lock.unlock();
       render_figure(scene, id);
       lock.lock();

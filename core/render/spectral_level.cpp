@@ -74,6 +74,12 @@ SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n) {
   return L;
 }
 
+SpectralLevel level_in_train(const SpectralLevel& level, const Scene& scene, const CompensatorPlate& compensator) {
+  SpectralLevel L = level;
+  for (int i = 0; i < L.n; ++i) L.train[i] = make_train(scene, compensator, L.nm[i]);
+  return L;
+}
+
 double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& L, int u, int i) {
   const EvalUnit& unit = plan.units()[u];
   const OpticalDomain& dom = plan.domains()[unit.domain];

@@ -44,6 +44,11 @@ struct SpectralLevel {
 
 SpectralLevel make_spectral_level(const EvaluationPlan& plan, int n);
 
+// The same bands (and prepared plates) in another polarizing train: what make_spectral_level
+// gives on the plan of `scene`, a scene that differs from the plan's only in the polars and the
+// accessory. Exact units evaluated with it see that train.
+SpectralLevel level_in_train(const SpectralLevel& level, const Scene& scene, const CompensatorPlate& compensator);
+
 // Spectral transmittance of one unit at band i with the exact plate Jones matrix (band centre).
 double unit_transmission(const EvaluationPlan& plan, const SpectralLevel& level, int unit, int band);
 // XYZ of one unit (Y = 1: the exposure reference); monochromatic: (T, T, T).

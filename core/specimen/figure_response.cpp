@@ -12,6 +12,7 @@
 #include "core/base/conventions.h"
 #include "core/microscope/compensator.h"
 #include "core/microscope/evaluation_plan.h"
+#include "core/microscope/scene_limits.h"
 #include "core/microscope/view_geometry.h"
 #include "core/render/cubic_sample.h"
 #include "core/render/image_develop.h"
@@ -23,6 +24,39 @@ namespace pmsim {
 
 bool figure_response_applies(const Scene& scene) {
   return scene.bertrand_in && scene.mode == ViewMode::Cono && scene.compensator == Compensator::None;
+}
+
+namespace {
+
+// The side of a flat view's canvas: the view's circumscribed circle plus the cubic's two-pixel
+// reach each side, of the parity of the view's width (at stage 0° each view pixel is then a canvas
+// pixel, read exactly).
+int flat_canvas_side(int width, int height) {
+  int side = static_cast<int>(std::ceil(std::hypot(width, height))) + 4;
+  if ((side - width) % 2 != 0) ++side;
+  return side;
+}
+
+// The flat view's canvas scene: the same specimen, centre and pixel pitch over the larger square
+// (the field number scaled: mm_per_pixel = field of view / the shorter side).
+Scene flat_canvas_scene(const Scene& scene) {
+  const int side = flat_canvas_side(scene.render.width, scene.render.height);
+  Scene s = scene;
+  s.eyepiece.field_number_mm *= static_cast<double>(side) / std::min(scene.render.width, scene.render.height);
+  s.render.width = s.render.height = side;
+  return s;
+}
+
+}  // namespace
+
+bool flat_response_applies(const Scene& scene) {
+  if (scene.mode != ViewMode::Ortho || scene.bertrand_in || scene.compensator != Compensator::None) return false;
+  // Sections only: a plate or the empty stage is one evaluation for the whole field (a render of
+  // a few ms, no cheaper composed), and a wedge's thickness runs across the rendered field.
+  if (!scene.sample_in || scene.sample.type != SampleType::Section) return false;
+  const int side = flat_canvas_side(scene.render.width, scene.render.height);
+  const double fn = scene.eyepiece.field_number_mm * side / std::min(scene.render.width, scene.render.height);
+  return side <= kMaxRenderSide && static_cast<long long>(side) * side <= kMaxRenderPixels && fn <= kMaxFieldNumberMm;
 }
 
 namespace {
@@ -111,9 +145,10 @@ void store_probe(FigureResponse& r, int k, const std::vector<float>& xyz) {
 }
 
 // The nine probes from one plan: its fits kept, reduced in the nine probes' trains, and one band
-// loop a direction for all nine (evaluate_unit_in_trains), each probe developed as its own
-// render's image is. False where that does not hold — the exact plate model, an exact unit, one spectral line,
-// ghost light (reckoned per train), more than 256 bands — or when cancelled.
+// loop a direction for all nine (evaluate_unit_in_trains); exact units band by band in each
+// probe's train. Each probe is developed as its own render's image is. False where that does not
+// hold — the exact plate model, one spectral line, ghost light (reckoned per train), more than
+// 256 bands — or when cancelled.
 bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool>* cancel) {
   std::vector<TrainState> trains;
   const Scene base = probe_scene(scene, 0, r.wavelengths);
@@ -127,12 +162,22 @@ bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool
   const SpectralLevel level = make_spectral_level(*plan, r.wavelengths);
   const int units = static_cast<int>(plan->units().size());
   for (int u = 0; u < units; ++u)
-    if (!shares_band_loop(*plan, level, u)) return false;
+    if (!plan->needs_exact(u) && !shares_band_loop(*plan, level, u)) return false;
+  // Exact units (absorbing, or optically active near the axis) go band by band in each probe's
+  // train, as each probe's render would take them.
+  std::vector<SpectralLevel> exact_levels;
+  if (plan->any_exact())
+    for (int k = 0; k < 9; ++k)
+      exact_levels.push_back(level_in_train(level, probe_scene(scene, k, r.wavelengths), plan->compensator()));
   std::vector<std::vector<glm::dvec3>> xyz(9, std::vector<glm::dvec3>(units));
   tbb::parallel_for(tbb::blocked_range<int>(0, units, 256), [&](const tbb::blocked_range<int>& b) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
     glm::dvec3 v[9];
     for (int u = b.begin(); u != b.end(); ++u) {
+      if (plan->needs_exact(u)) {
+        for (int k = 0; k < 9; ++k) xyz[k][u] = evaluate_unit(*plan, exact_levels[k], u);
+        continue;
+      }
       evaluate_unit_in_trains(*plan, level, u, trains, v);
       for (int k = 0; k < 9; ++k) xyz[k][u] = v[k];
     }
@@ -153,8 +198,14 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   const auto t0 = std::chrono::steady_clock::now();
   const auto cancelled = [&] { return cancel && cancel->load(); };
   FigureResponse r;
-  r.width = scene.render.width;
-  r.height = scene.render.height;
+  r.flat = !figure_response_applies(scene);
+  if (r.flat && !flat_response_applies(scene))
+    throw std::invalid_argument("render_figure_probes: neither a figure nor a flat view the probes serve");
+  r.image_width = scene.render.width;
+  r.image_height = scene.render.height;
+  const Scene grid = r.flat ? flat_canvas_scene(scene) : scene;
+  r.width = grid.render.width;
+  r.height = grid.render.height;
   r.monochromatic = scene.render.single_wavelength_nm > 0;
   r.wavelengths = own.wavelengths;
   r.progress = own;
@@ -165,12 +216,16 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   bool shared = false;
   if (!r.monochromatic) {
     tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
-    arena.execute([&] { shared = shared_probes(scene, r, cancel); });
+    arena.execute([&] { shared = shared_probes(grid, r, cancel); });
   }
   if (cancelled()) return std::nullopt;
   for (int k = 0; k < 9 && !shared; ++k) {
-    store_probe(r, k, ProgressiveRenderer::render(probe_scene(scene, k, r.wavelengths), threads).xyz);
+    store_probe(r, k, ProgressiveRenderer::render(probe_scene(grid, k, r.wavelengths), threads).xyz);
     if (cancelled()) return std::nullopt;
+  }
+  if (r.flat) {  // the canvas covers the view at every angle: nothing unlit, no rim to fill
+    r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   }
   r.lit = figure_disc(scene);
   bool light_outside = false;
@@ -192,32 +247,37 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   constexpr std::size_t kBlock = 4096;
   std::vector<float> grid(4 * n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock), [&](const tbb::blocked_range<std::size_t>& b) {
-    float sum[3][kBlock];
-    const std::size_t m = b.size();
-    for (int c = 0; c < 3; ++c) {
-      std::fill_n(sum[c], m, 0.0f);
-      for (int k = 0; k < 9; ++k) {
-        const float* plane = &r.probes[(3 * k + c) * n + b.begin()];
-        const float wk = w[k];
-        for (std::size_t p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
-      }
-    }
-    for (std::size_t p = 0; p < m; ++p) {
-      float* g = &grid[4 * (b.begin() + p)];
-      g[0] = sum[0][p];
-      g[1] = sum[1][p];
-      g[2] = sum[2][p];
-      g[3] = 0.0f;
-    }
-  });
+  // simple_partitioner: blocks of at most kBlock points (the auto partitioner may hand out more,
+  // and `sum` holds one block).
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, kBlock),
+      [&](const tbb::blocked_range<std::size_t>& b) {
+        float sum[3][kBlock];
+        const std::size_t m = b.size();
+        for (int c = 0; c < 3; ++c) {
+          std::fill_n(sum[c], m, 0.0f);
+          for (int k = 0; k < 9; ++k) {
+            const float* plane = &r.probes[(3 * k + c) * n + b.begin()];
+            const float wk = w[k];
+            for (std::size_t p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
+          }
+        }
+        for (std::size_t p = 0; p < m; ++p) {
+          float* g = &grid[4 * (b.begin() + p)];
+          g[0] = sum[0][p];
+          g[1] = sum[1][p];
+          g[2] = sum[2][p];
+          g[3] = 0.0f;
+        }
+      },
+      tbb::simple_partitioner());
   return grid;
 }
 
 }  // namespace
 
 RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in) {
-  const int W = r.width, H = r.height;
+  const int W = r.image_width, H = r.image_height, GW = r.width, GH = r.height;
   const double theta = in.stage_rad;
   const std::array<double, 3> c = probe_weights(in.polarizer_rad - theta);
   // The analyzer out passes a(0°) + a(90°) = (2, 0, 0): the whole intensity (the header).
@@ -227,7 +287,7 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
     for (int j = 0; j < 3; ++j) w[3 * i + j] = static_cast<float>(d[i] * c[j]);
   // The figure at these polars, stage 0°, at every grid point; then read turned by the stage.
   const std::vector<float> grid = contract_grid(r, w);
-  const std::size_t n = static_cast<std::size_t>(W) * H;
+  const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;
   img.height = H;
@@ -241,7 +301,7 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
     for (int y = rows.begin(); y != rows.end(); ++y) {
       // Grid coordinates of the row's pixels: linear in x (pixel centre (x + 0.5, y + 0.5)).
       const glm::dvec2 g0 = turn(field_from_pixel(W, H, 0.5, y + 0.5)), g1 = turn(field_from_pixel(W, H, 1.5, y + 0.5));
-      const double gx0 = g0.x * half + 0.5 * W - 0.5, gy0 = 0.5 * H - g0.y * half - 0.5;
+      const double gx0 = g0.x * half + 0.5 * GW - 0.5, gy0 = 0.5 * GH - g0.y * half - 0.5;
       const double dgx = (g1.x - g0.x) * half, dgy = -(g1.y - g0.y) * half;
       for (int x4 = 0; x4 < W; x4 += 4) {
         // Four pixels at a time (the last group repeats the row's last pixel).
@@ -252,19 +312,19 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
           gy[p] = gy0 + x * dgy;
         }
         cubic::v4 read[4];
-        cubic::cubic4(grid.data(), W, H, cubic::cells(gx, gy, W, H, W - 1, H - 1), read);
+        cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
         for (int p = 0; p < 4 && x4 + p < W; ++p) {
           const std::size_t o = static_cast<std::size_t>(y) * W + x4 + p;
           glm::vec3 v(0.0f);
-          if (r.lit[o]) {
+          if (r.lit.empty() || r.lit[o]) {
             // No negative light from the cubic's overshoot at an isogyre's edge.
             v = glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
           } else if (!r.outside.empty()) {
             const int sx = static_cast<int>(std::lround(gx[p])), sy = static_cast<int>(std::lround(gy[p]));
-            if (sx >= 0 && sy >= 0 && sx < W && sy < H) {
-              const std::size_t q = static_cast<std::size_t>(sy) * W + sx;
+            if (sx >= 0 && sy >= 0 && sx < GW && sy < GH) {
+              const std::size_t q = static_cast<std::size_t>(sy) * GW + sx;
               for (int k = 0; k < 9; ++k)
-                for (int ch = 0; ch < 3; ++ch) v[ch] += w[k] * r.outside[(3 * k + ch) * n + q];
+                for (int ch = 0; ch < 3; ++ch) v[ch] += w[k] * r.outside[(3 * k + ch) * grid_n + q];
             }
           }
           const glm::vec3 rgb = r.monochromatic ? glm::vec3(v.y) : to_rgb * v;

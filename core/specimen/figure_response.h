@@ -23,6 +23,12 @@
 // Where it does not hold: an accessory, whose retardance sits inside the band sum between the
 // specimen and the analyzer (a gypsum plate or wedge in the slot: figure_response_applies is
 // false and the figure is rendered afresh).
+//
+// A flat orthoscopic view of a thin section (no relief, or an EBSD map; flat_response_applies) is the
+// same bilinear form per image point, and the same rotation argument holds (condenser and
+// objective apertures are circular): its probes are rendered at stage 0° on a square canvas at the
+// view's pixel pitch that holds the view at every stage angle (the view's circumscribed circle and
+// the cubic's reach), and a frame reads the view's pixels turned out of it.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -41,16 +47,24 @@ inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
 // Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
 // conoscopic mode, no accessory in the slot.
 bool figure_response_applies(const Scene& scene);
+// Whether a flat orthoscopic view is served by probes (the traced specimens aside, which
+// response_kind tells first): a thin section (a plate or the empty stage is one evaluation for the
+// whole field, and a wedge's thickness runs across the rendered field, so a larger canvas would be
+// another wedge) in the orthoscope, Bertrand lens out, no accessory, its canvas within the render
+// limits.
+bool flat_response_applies(const Scene& scene);
 
 struct FigureResponse {
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // the probes' grid (a flat view's canvas)
+  int image_width = 0, image_height = 0;  // the composed image (a figure: the grid itself)
+  bool flat = false;                       // a flat orthoscopic view's canvas, not a figure
   bool monochromatic = false;  // render.single_wavelength_nm: R = G = B = Y
   // 27 planes of width × height floats: plane 3·(3·i + j) + c holds channel c (X, Y, Z) of the
   // probe with the analyzer at kFigureProbeDeg[i] and the polarizer at kFigureProbeDeg[j]
   // (planes: a frame's contraction is nine contiguous multiply-adds that vectorise). Unlit pixels
   // next to the disc hold their nearest lit neighbour (the cubic's reach).
   std::vector<float> probes;
-  std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant)
+  std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant) on the image; empty: all lit
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
   // read nearest-neighbour (the same planes); empty when there is none.
   std::vector<float> outside;

@@ -12,6 +12,7 @@ namespace pmsim {
 ResponseKind response_kind(const Scene& scene) {
   if (is_traced_specimen(scene)) return ResponseKind::Traced;
   if (figure_response_applies(scene)) return ResponseKind::Figure;
+  if (flat_response_applies(scene)) return ResponseKind::Flat;
   return ResponseKind::None;
 }
 
@@ -37,12 +38,14 @@ InstrumentResponse InstrumentResponse::figure_rendering(RenderImage own) {
 }
 
 ResponseKind InstrumentResponse::kind() const {
-  return std::holds_alternative<Traced>(state_) ? ResponseKind::Traced : ResponseKind::Figure;
+  if (std::holds_alternative<Traced>(state_)) return ResponseKind::Traced;
+  const auto* f = std::get_if<std::shared_ptr<const FigureResponse>>(&state_);
+  return f && (*f)->flat ? ResponseKind::Flat : ResponseKind::Figure;
 }
 
 const char* InstrumentResponse::coverage_name() const {
   if (const Traced* t = std::get_if<Traced>(&state_)) return t->coverage == ResponseCoverage::Disc ? "disc" : "field";
-  return "figure";
+  return kind() == ResponseKind::Flat ? "flat" : "figure";
 }
 
 bool InstrumentResponse::empty() const {
@@ -126,7 +129,8 @@ std::optional<InstrumentResponse> render_instrument_response(
     const std::atomic<bool>* cancel, int threads, const std::function<bool()>& hold) {
   switch (response_kind(scene)) {
     case ResponseKind::Traced: return render_traced(scene, coverage, progress, cancel, threads, hold);
-    case ResponseKind::Figure: return render_figure(scene, progress, cancel, threads);
+    case ResponseKind::Figure:
+    case ResponseKind::Flat: return render_figure(scene, progress, cancel, threads);
     case ResponseKind::None: break;
   }
   throw std::invalid_argument("render_instrument_response: the scene's view has no response (each setting is rendered)");

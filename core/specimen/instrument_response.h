@@ -7,8 +7,11 @@
 //            (specimen_response.h), rendered over the field or over the disc the stage sweeps.
 //   Figure — a conoscopic figure with no accessory (figure_response_applies): its nine probes
 //            (figure_response.h).
-//   None   — every other view (flat sections, plates, wedges, a figure with an accessory): the
-//            progressive renderer renders each setting afresh.
+//   Flat   — a thin section's flat orthoscopic view with no accessory (flat_response_applies:
+//            optics.relief off, or an EBSD map the slab cannot trace): nine probes over a canvas
+//            that holds the view at every stage angle (figure_response.h).
+//   None   — every other view (a plate, a wedge, an accessory in the slot, the parallel-light
+//            spot): the progressive renderer renders each setting afresh.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -23,7 +26,7 @@
 
 namespace pmsim {
 
-enum class ResponseKind { None, Traced, Figure };
+enum class ResponseKind { None, Traced, Figure, Flat };
 
 ResponseKind response_kind(const Scene& scene);
 
@@ -37,11 +40,12 @@ class InstrumentResponse {
  public:
   InstrumentResponse(ResponseProgress traced, ResponseCoverage coverage);
   explicit InstrumentResponse(std::shared_ptr<const FigureResponse> figure);
-  // A figure whose own render is still running (its probes come after): a status, nothing to compose.
+  // A figure or flat view whose own render is still running (its probes come after): a status,
+  // nothing to compose.
   static InstrumentResponse figure_rendering(RenderImage own);
 
   ResponseKind kind() const;
-  // "field" | "disc" | "figure": --stats' response.coverage.
+  // "field" | "disc" | "figure" | "flat": --stats' response.coverage.
   const char* coverage_name() const;
   // Nothing to compose yet: a traced response before its first pass, a figure before its probes.
   bool empty() const;

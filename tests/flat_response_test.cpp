@@ -1,0 +1,151 @@
+// A flat orthoscopic section view composed from its nine probes (core/specimen/figure_response.h,
+// flat_response_applies): the probes cover a canvas that holds the view at every stage angle, a
+// frame reads the view's pixels turned out of it. Against fresh renders at the same spectral level,
+// on a three-grain section without relief (64², the CI budget): at stage 0° the probes' linear
+// combination is the render itself; at a turned stage the Keys cubic resamples grain boundaries
+// that a fresh render samples anew.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/render/progressive_renderer.h"
+#include "core/spectrum/cie.h"
+#include "core/spectrum/color.h"
+#include "core/specimen/figure_response.h"
+
+namespace {
+
+using namespace pmsim;
+namespace fs = std::filesystem;
+
+fs::path scratch_dir() { return fs::temp_directory_path() / ("pmsim_flat_" + std::to_string(::getpid())); }
+struct RemoveScratch : ::testing::Environment {
+  void TearDown() override { fs::remove_all(scratch_dir()); }
+};
+[[maybe_unused]] const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
+
+// Three grains across a 0.2 mm field: quartz with its axis in the section at 20° and at 80°, and
+// biotite (absorbing: evaluated exactly, the probes' band-by-band path).
+Scene section_scene() {
+  fs::create_directories(scratch_dir());
+  const fs::path p = scratch_dir() / "three.json";
+  const auto axis = [](double deg) {
+    return nlohmann::json::array({std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180), 0.0});
+  };
+  const nlohmann::json j = {
+      {"type", "section"},
+      {"name", "three grains"},
+      {"thickness_um", 30},
+      {"size_mm", {0.4, 0.4}},
+      {"source", "test: three grains"},
+      {"grains",
+       {{{"mineral", "quartz"}, {"centre_mm", {-0.05, 0.03}}, {"size_mm", 0.12}, {"optic_axis", axis(20)}},
+        {{"mineral", "quartz"}, {"centre_mm", {0.06, 0.02}}, {"size_mm", 0.1}, {"optic_axis", axis(80)}},
+        {{"mineral", "biotite"}, {"centre_mm", {0.0, -0.07}}, {"size_mm", 0.09}, {"euler_deg", {68.0, 128.0, 65.0}}}}}};
+  std::ofstream(p) << j.dump();
+  Scene s;
+  s.sample.type = SampleType::Section;
+  s.sample.section = p.string();
+  s.optics.relief = false;
+  s.objective.magnification = 100.0;
+  s.render.width = s.render.height = 64;
+  return s;
+}
+
+Scene at(Scene s, double stage_deg, double pol_deg, bool analyzer_in, double ana_deg, int wavelengths) {
+  s.stage_deg = stage_deg;
+  s.polarizer_deg = pol_deg;
+  s.analyzer_in = analyzer_in;
+  s.analyzer_deg = ana_deg;
+  s.render.wavelengths = wavelengths;
+  return s;
+}
+
+struct Difference {
+  double mean_de = 0.0, max_abs_xyz = 0.0;
+};
+
+// Over the pixels one in from the image's edge (a fresh render's edge pixels see no neighbour
+// beyond the edge and sample boundaries there otherwise than the canvas, which has one).
+Difference difference(const RenderImage& a, const RenderImage& b) {
+  const glm::dvec3 white = illuminant_white_xyz(Illuminant::D65);
+  Difference d;
+  int count = 0;
+  for (int y = 1; y + 1 < a.height; ++y)
+    for (int x = 1; x + 1 < a.width; ++x) {
+      const std::size_t i = 3 * (static_cast<std::size_t>(y) * a.width + x);
+      for (int c = 0; c < 3; ++c) d.max_abs_xyz = std::max(d.max_abs_xyz, std::abs(double(a.xyz[i + c]) - b.xyz[i + c]));
+      d.mean_de += ciede2000(xyz_to_lab(glm::dvec3(a.xyz[i], a.xyz[i + 1], a.xyz[i + 2]), white),
+                             xyz_to_lab(glm::dvec3(b.xyz[i], b.xyz[i + 1], b.xyz[i + 2]), white));
+      ++count;
+    }
+  d.mean_de /= std::max(1, count);
+  return d;
+}
+
+TEST(FlatResponse, AppliesToSectionsWithoutAnAccessoryOnly) {
+  Scene s = section_scene();
+  EXPECT_TRUE(flat_response_applies(s));
+  s.compensator = Compensator::Gypsum;
+  EXPECT_FALSE(flat_response_applies(s));
+  s.compensator = Compensator::None;
+  s.sample.type = SampleType::Wedge;  // its thickness runs across the rendered field
+  EXPECT_FALSE(flat_response_applies(s));
+  s.sample.type = SampleType::Section;
+  s.bertrand_in = true;  // the parallel-light spot
+  EXPECT_FALSE(flat_response_applies(s));
+}
+
+TEST(FlatResponse, ComposedAtStageZeroIsTheFreshSectionAtAnyPolars) {
+  const Scene scene = section_scene();
+  const auto r = render_figure_response(scene);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_TRUE(r->flat);
+  EXPECT_GT(r->width, 64 * 1.41);  // the canvas holds the view's circumscribed circle
+  EXPECT_EQ(r->image_width, 64);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(0.0, 180.0);
+  for (int k = 0; k < 3; ++k) {
+    const bool analyzer_in = k != 2;
+    const Scene s = at(scene, 0.0, angle(rng), analyzer_in, angle(rng), r->wavelengths);
+    const Difference d = difference(compose_figure(*r, instrument_settings(s)), ProgressiveRenderer::render(s));
+    std::printf("polars %.1f/%.1f%s: max |ΔXYZ| %.2e\n", s.polarizer_deg, s.analyzer_deg,
+                analyzer_in ? "" : " (analyzer out)", d.max_abs_xyz);
+    // The canvas pixels at stage 0° are the view's pixels, and the probes combine in float with
+    // weights ≤ 1.5 from values ≤ 1: a few float ulps of XYZ ≈ 1; 1e-5 leaves ~10² of margin, and
+    // a wrong weight or a shifted canvas moves XYZ by 10⁻² or more.
+    EXPECT_LT(d.max_abs_xyz, 1e-5);
+  }
+}
+
+TEST(FlatResponse, ComposedAtATurnedStageIsTheFreshSectionWithinTheCubicsReading) {
+  const Scene scene = section_scene();
+  const auto r = render_figure_response(scene);
+  ASSERT_TRUE(r.has_value());
+  for (const double stage : {30.0, 117.0}) {
+    const Scene s = at(scene, stage, 10.0, true, 100.0, r->wavelengths);
+    const RenderImage composed = compose_figure(*r, instrument_settings(s));
+    const Difference d = difference(composed, ProgressiveRenderer::render(s));
+    const Difference w = difference(composed, ProgressiveRenderer::render(at(scene, -stage, 10.0, true, 100.0, r->wavelengths)));
+    std::printf("stage %.0f°: mean ΔE00 %.3f; against the section turned the wrong way %.3f\n", stage, d.mean_de,
+                w.mean_de);
+    // Measured 0.35–0.39 here (granite at 512²: 1.1 against a fresh render, 0.8 against a
+    // 64-sample reference where the fresh render is 0.5; docs/response.md): the cubic reads the
+    // grain boundaries' partial pixels between canvas pixels, a fresh render samples them anew.
+    // Issue 21's bound, 1.0, leaves 2.5× of margin; the section turned the wrong way (its grains
+    // elsewhere) is 50–120× further, so a sign or centre error cannot pass.
+    EXPECT_LT(d.mean_de, 1.0);
+    EXPECT_GT(w.mean_de, 10.0 * d.mean_de);
+  }
+}
+
+}  // namespace
