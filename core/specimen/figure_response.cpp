@@ -240,38 +240,67 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
 
 namespace {
 
-// The probes contracted with the frame's nine weights: the figure at these polars, stage 0°, as
-// X, Y, Z, 0 at every point (the layout cubic::cubic4 reads). Per block, each channel is nine
-// multiply-adds over contiguous planes (they vectorise), then interleaved.
-std::vector<float> contract_grid(const FigureResponse& r, const std::array<float, 9>& w) {
+// The probes contracted with the frame's nine weights: the view at these polars, stage 0°, as
+// X, Y, Z, 0 at the grid points the frame reads (`spans`: per grid row, the columns [first, last);
+// the layout cubic::cubic4 reads). Per block, each channel is nine multiply-adds over contiguous
+// planes (they vectorise), then interleaved.
+std::vector<float> contract_grid(const FigureResponse& r, const std::array<float, 9>& w,
+                                 const std::vector<std::pair<int, int>>& spans) {
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
-  constexpr std::size_t kBlock = 4096;
+  constexpr int kBlock = 2048;
   std::vector<float> grid(4 * n);
-  // simple_partitioner: blocks of at most kBlock points (the auto partitioner may hand out more,
-  // and `sum` holds one block).
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, n, kBlock),
-      [&](const tbb::blocked_range<std::size_t>& b) {
-        float sum[3][kBlock];
-        const std::size_t m = b.size();
+  tbb::parallel_for(tbb::blocked_range<int>(0, r.height, 4), [&](const tbb::blocked_range<int>& rows) {
+    float sum[3][kBlock];
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = spans[y].first; x < spans[y].second; x += kBlock) {
+        const std::size_t begin = static_cast<std::size_t>(y) * r.width + x;
+        const int m = std::min(kBlock, spans[y].second - x);
         for (int c = 0; c < 3; ++c) {
           std::fill_n(sum[c], m, 0.0f);
           for (int k = 0; k < 9; ++k) {
-            const float* plane = &r.probes[(3 * k + c) * n + b.begin()];
+            const float* plane = &r.probes[(3 * k + c) * n + begin];
             const float wk = w[k];
-            for (std::size_t p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
+            for (int p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
           }
         }
-        for (std::size_t p = 0; p < m; ++p) {
-          float* g = &grid[4 * (b.begin() + p)];
+        for (int p = 0; p < m; ++p) {
+          float* g = &grid[4 * (begin + p)];
           g[0] = sum[0][p];
           g[1] = sum[1][p];
           g[2] = sum[2][p];
           g[3] = 0.0f;
         }
-      },
-      tbb::simple_partitioner());
+      }
+  });
   return grid;
+}
+
+// Per grid row, the columns a frame's cubic reads: a figure reads its whole grid; a flat view the
+// turned image's rectangle on its canvas, widened by the taps' reach (3 cells). The rectangle is
+// convex, so its extent over a band of rows is reached at its edges clipped to the band.
+std::vector<std::pair<int, int>> read_spans(const FigureResponse& r, const std::array<glm::dvec2, 4>& corners) {
+  std::vector<std::pair<int, int>> spans(r.height, {0, r.width});
+  if (!r.flat) return spans;
+  constexpr double kReach = 3.0;
+  for (int y = 0; y < r.height; ++y) {
+    const double lo = y - kReach, hi = y + kReach;
+    double x_min = INFINITY, x_max = -INFINITY;
+    for (int e = 0; e < 4; ++e) {
+      const glm::dvec2 a = corners[e], b = corners[(e + 1) % 4];
+      const double y0 = std::max(lo, std::min(a.y, b.y)), y1 = std::min(hi, std::max(a.y, b.y));
+      if (y0 > y1) continue;
+      for (const double yy : {y0, y1}) {
+        const double t = b.y != a.y ? (yy - a.y) / (b.y - a.y) : 0.0;
+        const double x = a.x + t * (b.x - a.x);
+        x_min = std::min({x_min, x, b.y != a.y ? x : b.x});
+        x_max = std::max({x_max, x, b.y != a.y ? x : b.x});
+      }
+    }
+    spans[y] = x_min > x_max ? std::pair{0, 0}
+                             : std::pair{std::clamp(static_cast<int>(std::floor(x_min - kReach)), 0, r.width),
+                                         std::clamp(static_cast<int>(std::ceil(x_max + kReach)) + 1, 0, r.width)};
+  }
+  return spans;
 }
 
 }  // namespace
@@ -285,24 +314,29 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   std::array<float, 9> w{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) w[3 * i + j] = static_cast<float>(d[i] * c[j]);
-  // The figure at these polars, stage 0°, at every grid point; then read turned by the stage.
-  const std::vector<float> grid = contract_grid(r, w);
+  const StageToSample turn(degrees(theta));
+  const double half = 0.5 * std::min(W, H);
+  // Image point (px, py) → grid coordinates (pixel centres at integers).
+  const auto to_grid = [&](double px, double py) {
+    const glm::dvec2 g = turn(field_from_pixel(W, H, px, py));
+    return glm::dvec2(g.x * half + 0.5 * GW - 0.5, 0.5 * GH - g.y * half - 0.5);
+  };
+  // The view at these polars, stage 0°, where the frame reads it; then read turned by the stage.
+  const std::vector<float> grid =
+      contract_grid(r, w, read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)}));
   const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;
   img.height = H;
   img.rgb.resize(n * 3);
   img.xyz.resize(n * 3);
-  const StageToSample turn(degrees(theta));
-  const double half = 0.5 * std::min(W, H);
   glm::mat3 to_rgb;  // XYZ → linear sRGB, in float (columns: the images of X, Y, Z)
   for (int k = 0; k < 3; ++k) to_rgb[k] = glm::vec3(xyz_to_linear_srgb(glm::dvec3(k == 0, k == 1, k == 2)));
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
       // Grid coordinates of the row's pixels: linear in x (pixel centre (x + 0.5, y + 0.5)).
-      const glm::dvec2 g0 = turn(field_from_pixel(W, H, 0.5, y + 0.5)), g1 = turn(field_from_pixel(W, H, 1.5, y + 0.5));
-      const double gx0 = g0.x * half + 0.5 * GW - 0.5, gy0 = 0.5 * GH - g0.y * half - 0.5;
-      const double dgx = (g1.x - g0.x) * half, dgy = -(g1.y - g0.y) * half;
+      const glm::dvec2 g0 = to_grid(0.5, y + 0.5), g1 = to_grid(1.5, y + 0.5);
+      const double gx0 = g0.x, gy0 = g0.y, dgx = g1.x - g0.x, dgy = g1.y - g0.y;
       for (int x4 = 0; x4 < W; x4 += 4) {
         // Four pixels at a time (the last group repeats the row's last pixel).
         double gx[4], gy[4];
