@@ -8,12 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
-
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -21,40 +17,24 @@
 #include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 #include "core/specimen/figure_response.h"
+#include "tests/section_file_fixture.h"
 
 namespace {
 
 using namespace pmsim;
-namespace fs = std::filesystem;
-
-fs::path scratch_dir() { return fs::temp_directory_path() / ("pmsim_flat_" + std::to_string(::getpid())); }
-struct RemoveScratch : ::testing::Environment {
-  void TearDown() override { fs::remove_all(scratch_dir()); }
-};
-[[maybe_unused]] const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
 
 // Three grains across a 0.2 mm field: quartz with its axis in the section at 20° and at 80°, and
 // biotite (absorbing: evaluated exactly, the probes' band-by-band path).
 Scene section_scene() {
-  fs::create_directories(scratch_dir());
-  const fs::path p = scratch_dir() / "three.json";
-  const auto axis = [](double deg) {
-    return nlohmann::json::array({std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180), 0.0});
-  };
-  const nlohmann::json j = {
-      {"type", "section"},
-      {"name", "three grains"},
-      {"thickness_um", 30},
-      {"size_mm", {0.4, 0.4}},
-      {"source", "test: three grains"},
-      {"grains",
-       {{{"mineral", "quartz"}, {"centre_mm", {-0.05, 0.03}}, {"size_mm", 0.12}, {"optic_axis", axis(20)}},
-        {{"mineral", "quartz"}, {"centre_mm", {0.06, 0.02}}, {"size_mm", 0.1}, {"optic_axis", axis(80)}},
-        {{"mineral", "biotite"}, {"centre_mm", {0.0, -0.07}}, {"size_mm", 0.09}, {"euler_deg", {68.0, 128.0, 65.0}}}}}};
-  std::ofstream(p) << j.dump();
+  using section_test::grain_with_axis_in_plane;
+  const std::string p = section_test::write_section(
+      "three.json",
+      {grain_with_axis_in_plane("quartz", -0.05, 0.03, 0.12, 20.0), grain_with_axis_in_plane("quartz", 0.06, 0.02, 0.1, 80.0),
+       {{"mineral", "biotite"}, {"centre_mm", {0.0, -0.07}}, {"size_mm", 0.09}, {"euler_deg", {68.0, 128.0, 65.0}}}},
+      0.4);
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = p.string();
+  s.sample.section = p;
   s.optics.relief = false;
   s.objective.magnification = 100.0;
   s.render.width = s.render.height = 64;

@@ -7,12 +7,8 @@
 
 #include <atomic>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
-
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -20,36 +16,19 @@
 #include "core/render/progressive_renderer.h"
 #include "core/specimen/instrument_response.h"
 #include "core/specimen/traced_specimen.h"
+#include "tests/section_file_fixture.h"
 
 namespace {
 
 using namespace pmsim;
-namespace fs = std::filesystem;
-
-fs::path scratch_dir() { return fs::temp_directory_path() / ("pmsim_instrument_" + std::to_string(::getpid())); }
-struct RemoveScratch : ::testing::Environment {
-  void TearDown() override { fs::remove_all(scratch_dir()); }
-};
-[[maybe_unused]] const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
 
 // One quartz grain with its optic axis in the section at 30°, 30 µm: a traced specimen.
 Scene traced_scene() {
-  fs::create_directories(scratch_dir());
-  const fs::path p = scratch_dir() / "quartz.json";
-  const nlohmann::json j = {{"type", "section"},
-                            {"name", "one quartz"},
-                            {"thickness_um", 30},
-                            {"size_mm", {0.12, 0.12}},
-                            {"source", "test: one grain"},
-                            {"grains",
-                             {{{"mineral", "quartz"},
-                               {"centre_mm", {0.0, 0.0}},
-                               {"size_mm", 0.5},
-                               {"optic_axis", {std::cos(0.5236), std::sin(0.5236), 0.0}}}}}};
-  std::ofstream(p) << j.dump();
+  const std::string p = section_test::write_section(
+      "quartz.json", {section_test::grain_with_axis_in_plane("quartz", 0.0, 0.0, 0.5, 30.0)}, 0.12);
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = p.string();
+  s.sample.section = p;
   s.analyzer_in = true;
   s.objective.magnification = 100.0;
   s.render.width = s.render.height = 16;
@@ -115,7 +94,7 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
   // Another section is not loaded to be compared (the app asks on its UI thread, and loading a
   // rock grows it): a path that does not exist would throw if it were.
   next = traced;
-  next.sample.section = (scratch_dir() / "no_such_section.json").string();
+  next.sample.section = (section_test::scratch_dir() / "no_such_section.json").string();
   EXPECT_FALSE(response_serves(traced, next));
 
   const Scene figure = figure_scene();

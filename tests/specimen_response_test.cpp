@@ -22,34 +22,17 @@
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_slab.h"
 #include "core/specimen/traced_specimen.h"
+#include "tests/section_file_fixture.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 constexpr int kPixels = 50;
 
-fs::path scratch_dir() { return fs::temp_directory_path() / ("pmsim_response_" + std::to_string(::getpid())); }
-struct RemoveScratch : ::testing::Environment {
-  void TearDown() override { fs::remove_all(scratch_dir()); }
-};
-[[maybe_unused]] const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
-
+// One quartz grain filling the field, its optic axis in the section at 20°.
 std::string one_grain_file() {
-  fs::create_directories(scratch_dir());
-  const double a = pmsim::radians(20.0);
-  const nlohmann::json j = {{"type", "section"},
-                            {"name", "one quartz"},
-                            {"thickness_um", 30},
-                            {"size_mm", {0.12, 0.12}},
-                            {"source", "test: one grain"},
-                            {"grains",
-                             {{{"mineral", "quartz"},
-                               {"centre_mm", {0.0, 0.0}},
-                               {"size_mm", 0.5},
-                               {"optic_axis", {std::cos(a), std::sin(a), 0.0}}}}}};
-  const fs::path p = scratch_dir() / "quartz.json";
-  std::ofstream(p) << j.dump();
-  return p.string();
+  return section_test::write_section(
+      "quartz.json", {section_test::grain_with_axis_in_plane("quartz", 0.0, 0.0, 0.5, 20.0)}, 0.12);
 }
 
 pmsim::Scene scene() {
