@@ -421,7 +421,7 @@ std::vector<std::string> bench_targets(const BenchReport& rep) {
   // Stage drag (issue 14): a converged figure on every frame at 60 Hz.
   for (const BenchRow& r : rep.rows)
     if (r.strategy == "stage-drag" || r.strategy == "stage-drag-composed")
-      out.push_back((r.strategy == "stage-drag" ? "stage drag " : "stage drag composed from the figure's response ") +
+      out.push_back((r.strategy == "stage-drag" ? "stage drag " : "stage drag composed from the view's response ") +
                     r.scene + ": mean frame to converged " + fmt("%.1f ms", r.time_ms) +
                     idle(r) + ", last frame ΔE " + fmt("%.2f", r.mean_de2000) +
                     (r.time_ms <= 16 && r.mean_de2000 <= 1 ? " (≤ 16 ms: MET)"

@@ -182,16 +182,16 @@ StrategyResult run_stage_drag(const Scene& scene, int threads) {
   return r;
 }
 
-// The same drag as run_stage_drag, composed from the figure's response: the response is rendered
-// once at the drag's first angle (its time goes into the model report, not the frames), then each
+// The same drag as run_stage_drag, composed from the view's response (a figure's, or a flat
+// section's; figure_response.h): the response is rendered once at the drag's first angle (its time goes into the model report, not the frames), then each
 // frame is one compose_figure. time_ms and cpu_ms are means per frame.
 StrategyResult run_figure_drag(const Scene& scene, int threads) {
   Scene s = scene;
   s.stage_deg = drag_stage_deg(scene, 0);
   const std::optional<InstrumentResponse> response =
       render_instrument_response(s, ResponseCoverage::Field, nullptr, nullptr, threads);
-  if (!response || response->kind() != ResponseKind::Figure)
-    throw std::runtime_error("the figure's response was not rendered");
+  if (!response || (response->kind() != ResponseKind::Figure && response->kind() != ResponseKind::Flat))
+    throw std::runtime_error("the view's probed response was not rendered");
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   double wall = 0.0, cpu = 0.0;
   RenderImage img;
@@ -210,7 +210,7 @@ StrategyResult run_figure_drag(const Scene& scene, int threads) {
   r.wavelengths = response->status().wavelengths;
   r.error_estimate = img.error_estimate.value_or(-1.0);
   char head[160];
-  std::snprintf(head, sizeof head, "mean of %d frames of a 1°/frame stage drag composed from the figure's response "
+  std::snprintf(head, sizeof head, "mean of %d frames of a 1°/frame stage drag composed from the view's response "
                 "(rendered once: %.0f ms); ", kStageDragFrames, response->status().time_ms);
   r.model_report = head + img.model_report;
   return r;
@@ -269,6 +269,11 @@ std::vector<BenchStrategy> bench_strategies(const BenchScene& bs, bool quick) {
   if (bs.conoscopic) {
     v.push_back({"stage-drag", K::StageDrag, {"render.strategy=auto"}, 0});
     v.push_back({"stage-drag-composed", K::FigureDrag, {"render.strategy=auto"}, 0});
+  } else if (bs.scene.sample.type == SampleType::Section) {
+    // The flat section image (the progressive renderer's, as every row of this scene) dragged
+    // both ways: restarted, and composed from its response (ResponseKind::Flat).
+    v.push_back({"stage-drag", K::StageDrag, {"render.strategy=auto", "optics.relief=off"}, 0});
+    v.push_back({"stage-drag-composed", K::FigureDrag, {"render.strategy=auto", "optics.relief=off"}, 0});
   }
   return v;
 }
