@@ -94,6 +94,10 @@ GrownTiling::Shape shape_record(const glm::dvec3& nucleus, double from, double t
     for (std::size_t f = 0; f < count / 2; ++f) faces[start + f] = faces[start + 2 * f];
     faces.resize(start + count / 2);
   }
+  // Nearest faces first: beyond() stops at the first face out of reach, most often a lath's or
+  // plate's broad face (the gauge is their maximum, in any order).
+  std::stable_sort(faces.begin() + static_cast<std::ptrdiff_t>(start), faces.end(),
+                   [](const glm::dvec4& a, const glm::dvec4& b) { return a.w < b.w; });
   s.faces = static_cast<std::uint16_t>(faces.size() - start);
   return s;
 }
@@ -153,12 +157,11 @@ bool GrownTiling::beyond(int i, const glm::dvec2& p) const {
   if (c.faces == 0) return false;
   const glm::dvec3 x(p.x - c.nucleus_mm.x, p.y - c.nucleus_mm.y, -c.nucleus_mm.z);
   const glm::dvec4* f = faces_.data() + c.first_face;
-  bool out = false;
   for (int k = 0; k < c.faces; ++k) {
     const double d = glm::dot(glm::dvec3(f[k]), x), limit = f[k].w * (1.0 + 1e-9);
-    out = out || d > limit || (c.paired && -d > limit);
+    if ((c.paired ? std::abs(d) : d) > limit) return true;
   }
-  return out;
+  return false;
 }
 
 // arrival_time of the crystal, the same number.
