@@ -27,6 +27,10 @@
 struct ImDrawList;
 struct ImGuiStyle;
 
+namespace pmsim {
+class SectionMap;
+}
+
 namespace pmsim::ui {
 
 struct ExerciseSession;  // ui/exercise_panel.h
@@ -225,6 +229,16 @@ class App {
 
   struct Teaching;  // cursor probe, chart and figure text (teaching_panel.cpp)
   std::unique_ptr<Teaching> teaching_;
+
+  // The slide overview's section, loaded off the UI thread: a rock grown from its recipe takes
+  // seconds the first time (sample.section, sample.seed), and the window must keep drawing.
+  struct SlideSection {
+    std::string key;  // the section, seed and orientation seed it is for
+    std::future<std::shared_ptr<const SectionMap>> job;
+    std::shared_ptr<const SectionMap> map;
+    bool failed = false;
+  };
+  SlideSection slide_;
 };
 
 // The observation keys of pmsim-exercise identify (and the script's `identify KEY VALUE`).

@@ -1,6 +1,8 @@
 // The left panel: every microscope control, each editing one scene key of `edit`.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <cstring>
 
@@ -360,12 +362,29 @@ void App::draw_rock_seed(SampleSettings& s, bool& changed) {
 void App::draw_slide_overview(Scene& edit, bool& changed) {
   // The slide seen from above at stage 0°: the section's extent, and the field of view as a circle
   // around the point under the crosshair. A click moves the stage there.
-  std::shared_ptr<const SectionMap> map;
-  try {
-    map = load_scene_section(edit);
-  } catch (const std::exception&) {
-    return;  // reported by the scene check on commit
+  const SampleSettings& s = edit.sample;
+  std::string key = s.section + "|" + (s.seed ? std::to_string(*s.seed) : "-") + "|" +
+                    (s.orientation_seed ? std::to_string(*s.orientation_seed) : "-") + "|" +
+                    std::to_string(static_cast<int>(s.nonindexed));
+  for (const auto& [phase, mineral] : s.phases) key += "|" + phase + "=" + mineral;
+  if (key != slide_.key) {  // another section: loaded (grown) on a thread of its own
+    slide_ = SlideSection{};
+    slide_.key = key;
+    slide_.job = std::async(std::launch::async, [scene = edit] { return load_scene_section(scene); });
   }
+  if (slide_.job.valid() && slide_.job.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    try {
+      slide_.map = slide_.job.get();
+    } catch (const std::exception&) {
+      slide_.failed = true;  // reported by the scene check on commit
+    }
+  }
+  if (slide_.failed) return;
+  if (!slide_.map) {
+    ImGui::TextDisabled("Slide: preparing the section...");
+    return;
+  }
+  const std::shared_ptr<const SectionMap>& map = slide_.map;
   ImGui::TextUnformatted("Slide (click to move the stage)");
   const float avail = ImGui::GetContentRegionAvail().x;
   const double margin_mm = 0.1 * std::max(map->width_mm, map->height_mm);
