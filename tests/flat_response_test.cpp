@@ -83,6 +83,30 @@ TEST(FlatResponse, AppliesToSectionsWithoutAnAccessoryOnly) {
   s.sample.type = SampleType::Section;
   s.bertrand_in = true;  // the parallel-light spot
   EXPECT_FALSE(flat_response_applies(s));
+  s.bertrand_in = false;
+  s.render.width = s.render.height = 1024;  // canvas 1454²: 228 MB of probes
+  EXPECT_TRUE(flat_response_applies(s));
+  s.render.width = s.render.height = 2048;  // canvas 2902²: 0.9 GB; rendered per setting instead
+  EXPECT_FALSE(flat_response_applies(s));
+}
+
+// A render of `s` at k times its pixels, box-filtered back to its pixels: what a k-times-finer
+// canvas read at stage 0° holds for each view pixel.
+RenderImage box_filtered_render(Scene s, int k) {
+  const int w = s.render.width, h = s.render.height;
+  s.render.width *= k;
+  s.render.height *= k;
+  const RenderImage fine = ProgressiveRenderer::render(s);
+  RenderImage img;
+  img.width = w;
+  img.height = h;
+  img.xyz.assign(3 * static_cast<std::size_t>(w) * h, 0.0f);
+  for (int y = 0; y < h * k; ++y)
+    for (int x = 0; x < w * k; ++x)
+      for (int c = 0; c < 3; ++c)
+        img.xyz[3 * (static_cast<std::size_t>(y / k) * w + x / k) + c] +=
+            fine.xyz[3 * (static_cast<std::size_t>(y) * w * k + x) + c] / static_cast<float>(k * k);
+  return img;
 }
 
 TEST(FlatResponse, ComposedAtStageZeroIsTheFreshSectionAtAnyPolars) {
@@ -90,19 +114,22 @@ TEST(FlatResponse, ComposedAtStageZeroIsTheFreshSectionAtAnyPolars) {
   const auto r = render_figure_response(scene);
   ASSERT_TRUE(r.has_value());
   EXPECT_TRUE(r->flat);
-  EXPECT_GT(r->width, 64 * 1.41);  // the canvas holds the view's circumscribed circle
+  // A 64² view's canvas (96 view pixels) is rendered 3× finer (kFlatCanvasMinSide 256).
+  EXPECT_EQ(r->scale, 3);
+  EXPECT_EQ(r->width, 96 * 3);  // the canvas holds the view's circumscribed circle
   EXPECT_EQ(r->image_width, 64);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> angle(0.0, 180.0);
   for (int k = 0; k < 3; ++k) {
     const bool analyzer_in = k != 2;
     const Scene s = at(scene, 0.0, angle(rng), analyzer_in, angle(rng), r->wavelengths);
-    const Difference d = difference(compose_figure(*r, instrument_settings(s)), ProgressiveRenderer::render(s));
+    const Difference d = difference(compose_figure(*r, instrument_settings(s)), box_filtered_render(s, r->scale));
     std::printf("polars %.1f/%.1f%s: max |ΔXYZ| %.2e\n", s.polarizer_deg, s.analyzer_deg,
                 analyzer_in ? "" : " (analyzer out)", d.max_abs_xyz);
-    // The canvas pixels at stage 0° are the view's pixels, and the probes combine in float with
-    // weights ≤ 1.5 from values ≤ 1: a few float ulps of XYZ ≈ 1; 1e-5 leaves ~10² of margin, and
-    // a wrong weight or a shifted canvas moves XYZ by 10⁻² or more.
+    // At stage 0° the canvas cells a view pixel reads are the fine render's pixels, and the probes
+    // combine in float with weights ≤ 1.5 from values ≤ 1, averaged over 9: a few float ulps of
+    // XYZ ≈ 1; 1e-5 leaves ~10² of margin, and a wrong weight, a shifted canvas or a cell read
+    // from the neighbouring pixel moves XYZ by 10⁻² or more.
     EXPECT_LT(d.max_abs_xyz, 1e-5);
   }
 }
@@ -118,11 +145,11 @@ TEST(FlatResponse, ComposedAtATurnedStageIsTheFreshSectionWithinTheCubicsReading
     const Difference w = difference(composed, ProgressiveRenderer::render(at(scene, -stage, 10.0, true, 100.0, r->wavelengths)));
     std::printf("stage %.0f°: mean ΔE00 %.3f; against the section turned the wrong way %.3f\n", stage, d.mean_de,
                 w.mean_de);
-    // Measured 0.35–0.39 here (granite at 512²: 1.1 against a fresh render, 0.8 against a
+    // Measured 0.12–0.14 here with the 3×-finer canvas (0.35–0.39 at the view's pitch; granite at 512²: 1.1 against a fresh render, 0.8 against a
     // 64-sample reference where the fresh render is 0.5; docs/response.md): the cubic reads the
     // grain boundaries' partial pixels between canvas pixels, a fresh render samples them anew.
-    // Issue 21's bound, 1.0, leaves 2.5× of margin; the section turned the wrong way (its grains
-    // elsewhere) is 50–120× further, so a sign or centre error cannot pass.
+    // Issue 21's bound, 1.0, leaves 7× of margin; the section turned the wrong way (its grains
+    // elsewhere) is 150–350× further, so a sign or centre error cannot pass.
     EXPECT_LT(d.mean_de, 1.0);
     EXPECT_GT(w.mean_de, 10.0 * d.mean_de);
   }

@@ -28,26 +28,32 @@ bool figure_response_applies(const Scene& scene) {
 
 namespace {
 
-// The side of a flat view's canvas: the view's circumscribed circle plus the cubic's two-pixel
-// reach each side, of the parity of the view's width (at stage 0° each view pixel is then a canvas
-// pixel, read exactly).
+// The side of a flat view's canvas in view pixels: the view's circumscribed circle plus the
+// cubic's two-pixel reach each side, of the parity of the view's width (at stage 0° each view
+// pixel is then k × k canvas pixels, read exactly).
 int flat_canvas_side(int width, int height) {
   int side = static_cast<int>(std::ceil(std::hypot(width, height))) + 4;
   if ((side - width) % 2 != 0) ++side;
   return side;
 }
 
-// The flat view's canvas scene: the same specimen, centre and pixel pitch over the larger square
-// (the field number scaled: mm_per_pixel = field of view / the shorter side).
+// The flat view's canvas scene: the same specimen and centre over the larger square, k canvas
+// pixels to a view pixel (the field number scaled: mm_per_pixel = field of view / the shorter side).
 Scene flat_canvas_scene(const Scene& scene) {
   const int side = flat_canvas_side(scene.render.width, scene.render.height);
+  const int k = flat_canvas_scale(scene.render.width, scene.render.height);
   Scene s = scene;
   s.eyepiece.field_number_mm *= static_cast<double>(side) / std::min(scene.render.width, scene.render.height);
-  s.render.width = s.render.height = side;
+  s.render.width = s.render.height = side * k;
   return s;
 }
 
 }  // namespace
+
+int flat_canvas_scale(int width, int height) {
+  const int side = flat_canvas_side(width, height);
+  return std::clamp((kFlatCanvasMinSide + side - 1) / side, 1, kMaxFlatCanvasScale);
+}
 
 bool flat_response_applies(const Scene& scene) {
   if (scene.mode != ViewMode::Ortho || scene.bertrand_in || scene.compensator != Compensator::None) return false;
@@ -55,8 +61,9 @@ bool flat_response_applies(const Scene& scene) {
   // a few ms, no cheaper composed), and a wedge's thickness runs across the rendered field.
   if (!scene.sample_in || scene.sample.type != SampleType::Section) return false;
   const int side = flat_canvas_side(scene.render.width, scene.render.height);
+  const long long canvas = static_cast<long long>(side) * flat_canvas_scale(scene.render.width, scene.render.height);
   const double fn = scene.eyepiece.field_number_mm * side / std::min(scene.render.width, scene.render.height);
-  return side <= kMaxRenderSide && static_cast<long long>(side) * side <= kMaxRenderPixels && fn <= kMaxFieldNumberMm;
+  return canvas * canvas <= kMaxFlatCanvasPixels && fn <= kMaxFieldNumberMm;
 }
 
 namespace {
@@ -203,6 +210,7 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
     throw std::invalid_argument("render_figure_probes: neither a figure nor a flat view the probes serve");
   r.image_width = scene.render.width;
   r.image_height = scene.render.height;
+  r.scale = r.flat ? flat_canvas_scale(scene.render.width, scene.render.height) : 1;
   const Scene grid = r.flat ? flat_canvas_scene(scene) : scene;
   r.width = grid.render.width;
   r.height = grid.render.height;
@@ -315,12 +323,13 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) w[3 * i + j] = static_cast<float>(d[i] * c[j]);
   const StageToSample turn(degrees(theta));
-  const double half = 0.5 * std::min(W, H);
-  // Image point (px, py) → grid coordinates (pixel centres at integers).
+  const double half = 0.5 * std::min(W, H) * r.scale;
+  // Image point (px, py) → grid coordinates (pixel centres at integers); affine: origin + px·ex + py·ey.
   const auto to_grid = [&](double px, double py) {
     const glm::dvec2 g = turn(field_from_pixel(W, H, px, py));
     return glm::dvec2(g.x * half + 0.5 * GW - 0.5, 0.5 * GH - g.y * half - 0.5);
   };
+  const glm::dvec2 origin = to_grid(0, 0), ex = to_grid(1, 0) - origin, ey = to_grid(0, 1) - origin;
   // The view at these polars, stage 0°, where the frame reads it; then read turned by the stage.
   const std::vector<float> grid =
       contract_grid(r, w, read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)}));
@@ -332,39 +341,44 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   img.xyz.resize(n * 3);
   glm::mat3 to_rgb;  // XYZ → linear sRGB, in float (columns: the images of X, Y, Z)
   for (int k = 0; k < 3; ++k) to_rgb[k] = glm::vec3(xyz_to_linear_srgb(glm::dvec3(k == 0, k == 1, k == 2)));
+  const int k = r.scale;  // k × k readings a pixel, at the centres of its k × k canvas cells at stage 0°
+  const float box = 1.0f / static_cast<float>(k * k);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
-      // Grid coordinates of the row's pixels: linear in x (pixel centre (x + 0.5, y + 0.5)).
-      const glm::dvec2 g0 = to_grid(0.5, y + 0.5), g1 = to_grid(1.5, y + 0.5);
-      const double gx0 = g0.x, gy0 = g0.y, dgx = g1.x - g0.x, dgy = g1.y - g0.y;
       for (int x4 = 0; x4 < W; x4 += 4) {
         // Four pixels at a time (the last group repeats the row's last pixel).
+        glm::vec3 sum[4]{};
         double gx[4], gy[4];
-        for (int p = 0; p < 4; ++p) {
-          const int x = std::min(x4 + p, W - 1);
-          gx[p] = gx0 + x * dgx;
-          gy[p] = gy0 + x * dgy;
-        }
-        cubic::v4 read[4];
-        cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
+        for (int j = 0; j < k; ++j)
+          for (int i = 0; i < k; ++i) {
+            const glm::dvec2 at = origin + ((i + 0.5) / k) * ex + (y + (j + 0.5) / k) * ey;
+            for (int p = 0; p < 4; ++p) {
+              const int x = std::min(x4 + p, W - 1);
+              gx[p] = at.x + x * ex.x;
+              gy[p] = at.y + x * ex.y;
+            }
+            cubic::v4 read[4];
+            cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
+            // No negative light from the cubic's overshoot at an isogyre's or a boundary's edge.
+            for (int p = 0; p < 4; ++p) sum[p] += glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
+          }
         for (int p = 0; p < 4 && x4 + p < W; ++p) {
           const std::size_t o = static_cast<std::size_t>(y) * W + x4 + p;
           glm::vec3 v(0.0f);
           if (r.lit.empty() || r.lit[o]) {
-            // No negative light from the cubic's overshoot at an isogyre's edge.
-            v = glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
-          } else if (!r.outside.empty()) {
+            v = sum[p] * box;
+          } else if (!r.outside.empty()) {  // a figure (k = 1): gx, gy are the pixel's centre
             const int sx = static_cast<int>(std::lround(gx[p])), sy = static_cast<int>(std::lround(gy[p]));
             if (sx >= 0 && sy >= 0 && sx < GW && sy < GH) {
               const std::size_t q = static_cast<std::size_t>(sy) * GW + sx;
-              for (int k = 0; k < 9; ++k)
-                for (int ch = 0; ch < 3; ++ch) v[ch] += w[k] * r.outside[(3 * k + ch) * grid_n + q];
+              for (int kk = 0; kk < 9; ++kk)
+                for (int ch = 0; ch < 3; ++ch) v[ch] += w[kk] * r.outside[(3 * kk + ch) * grid_n + q];
             }
           }
           const glm::vec3 rgb = r.monochromatic ? glm::vec3(v.y) : to_rgb * v;
-          for (int k = 0; k < 3; ++k) {
-            img.xyz[3 * o + k] = std::isfinite(v[k]) ? v[k] : 0.0f;
-            img.rgb[3 * o + k] = std::isfinite(rgb[k]) ? rgb[k] : 0.0f;
+          for (int ch = 0; ch < 3; ++ch) {
+            img.xyz[3 * o + ch] = std::isfinite(v[ch]) ? v[ch] : 0.0f;
+            img.rgb[3 * o + ch] = std::isfinite(rgb[ch]) ? rgb[ch] : 0.0f;
           }
         }
       }

@@ -28,7 +28,10 @@
 // same bilinear form per image point, and the same rotation argument holds (condenser and
 // objective apertures are circular): its probes are rendered at stage 0° on a square canvas at the
 // view's pixel pitch that holds the view at every stage angle (the view's circumscribed circle and
-// the cubic's reach), and a frame reads the view's pixels turned out of it.
+// the cubic's reach), and a frame reads the view's pixels turned out of it. A small view's canvas
+// is finer than its pixels (flat_canvas_scale): a frame box-filters k × k canvas readings over
+// each view pixel, so the grain boundaries a pixel straddles are read as its area, not as the
+// cubic's blend of two neighbours' partial pixels.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -47,17 +50,33 @@ inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
 // Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
 // conoscopic mode, no accessory in the slot.
 bool figure_response_applies(const Scene& scene);
+// A flat view's probes hold 27 floats a canvas pixel, and the canvas has about twice the view's
+// pixels: 1536² canvas pixels (a view up to ~1080², 255 MB of probes) is where a view is rendered
+// per setting instead (the app's views are 512–1024²; a 2048² view's probes would take 0.9 GB).
+inline constexpr long long kMaxFlatCanvasPixels = 1536LL * 1536LL;
+// A flat canvas narrower than kFlatCanvasMinSide view pixels is rendered k ≤ kMaxFlatCanvasScale
+// times finer: at 32² (canvas 50 px) a granite view's pixel straddles a grain boundary in one
+// pixel of three, and composing from view-pitch probes read those 0.7 ΔE00 further from a converged
+// reference than a fresh render (2.07 against 1.41); a 4×-finer canvas box-filtered over each
+// pixel is 1.14 (docs/response.md), costs 16× a tiny canvas's probes, and nothing at the app's
+// 512–1024² views (k = 1).
+inline constexpr int kFlatCanvasMinSide = 256;
+inline constexpr int kMaxFlatCanvasScale = 4;
+// Canvas pixels per view pixel along each axis for a flat view of width × height.
+int flat_canvas_scale(int width, int height);
+
 // Whether a flat orthoscopic view is served by probes (the traced specimens aside, which
 // response_kind tells first): a thin section (a plate or the empty stage is one evaluation for the
 // whole field, and a wedge's thickness runs across the rendered field, so a larger canvas would be
-// another wedge) in the orthoscope, Bertrand lens out, no accessory, its canvas within the render
-// limits.
+// another wedge) in the orthoscope, Bertrand lens out, no accessory, its canvas within
+// kMaxFlatCanvasPixels and the field-number limit.
 bool flat_response_applies(const Scene& scene);
 
 struct FigureResponse {
   int width = 0, height = 0;  // the probes' grid (a flat view's canvas)
   int image_width = 0, image_height = 0;  // the composed image (a figure: the grid itself)
   bool flat = false;                       // a flat orthoscopic view's canvas, not a figure
+  int scale = 1;  // canvas pixels per view pixel along each axis (flat_canvas_scale; a figure: 1)
   bool monochromatic = false;  // render.single_wavelength_nm: R = G = B = Y
   // 27 planes of width × height floats: plane 3·(3·i + j) + c holds channel c (X, Y, Z) of the
   // probe with the analyzer at kFigureProbeDeg[i] and the polarizer at kFigureProbeDeg[j]
