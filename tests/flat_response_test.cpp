@@ -145,8 +145,9 @@ TEST(FlatResponse, ComposedAtATurnedStageIsTheFreshSectionWithinTheCubicsReading
     const Difference w = difference(composed, ProgressiveRenderer::render(at(scene, -stage, 10.0, true, 100.0, r->wavelengths)));
     std::printf("stage %.0f°: mean ΔE00 %.3f; against the section turned the wrong way %.3f\n", stage, d.mean_de,
                 w.mean_de);
-    // Measured 0.12–0.14 here with the 3×-finer canvas (0.35–0.39 at the view's pitch; granite at 512²: 1.1 against a fresh render, 0.8 against a
-    // 64-sample reference where the fresh render is 0.5; docs/response.md): the cubic reads the
+    // Measured 0.12–0.14 here with the 3×-finer canvas (0.35–0.39 at the view's pitch; granite at
+    // 512², k = 1: 1.1 against a fresh render, 0.8 against a 64-sample reference where the fresh
+    // render is 0.5; docs/response.md): the cubic reads the
     // grain boundaries' partial pixels between canvas pixels, a fresh render samples them anew.
     // Issue 21's bound, 1.0, leaves 7× of margin; the section turned the wrong way (its grains
     // elsewhere) is 150–350× further, so a sign or centre error cannot pass.

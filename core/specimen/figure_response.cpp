@@ -345,23 +345,25 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   const float box = 1.0f / static_cast<float>(k * k);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
+      // Grid coordinates of the row's readings at x = 0, one per cell of a k × k pixel (linear in x).
+      glm::dvec2 row_at[kMaxFlatCanvasScale * kMaxFlatCanvasScale];
+      for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) row_at[j * k + i] = origin + ((i + 0.5) / k) * ex + (y + (j + 0.5) / k) * ey;
       for (int x4 = 0; x4 < W; x4 += 4) {
         // Four pixels at a time (the last group repeats the row's last pixel).
         glm::vec3 sum[4]{};
         double gx[4], gy[4];
-        for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i) {
-            const glm::dvec2 at = origin + ((i + 0.5) / k) * ex + (y + (j + 0.5) / k) * ey;
-            for (int p = 0; p < 4; ++p) {
-              const int x = std::min(x4 + p, W - 1);
-              gx[p] = at.x + x * ex.x;
-              gy[p] = at.y + x * ex.y;
-            }
-            cubic::v4 read[4];
-            cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
-            // No negative light from the cubic's overshoot at an isogyre's or a boundary's edge.
-            for (int p = 0; p < 4; ++p) sum[p] += glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
+        for (int cell = 0; cell < k * k; ++cell) {
+          for (int p = 0; p < 4; ++p) {
+            const int x = std::min(x4 + p, W - 1);
+            gx[p] = row_at[cell].x + x * ex.x;
+            gy[p] = row_at[cell].y + x * ex.y;
           }
+          cubic::v4 read[4];
+          cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
+          // No negative light from the cubic's overshoot at an isogyre's or a boundary's edge.
+          for (int p = 0; p < 4; ++p) sum[p] += glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
+        }
         for (int p = 0; p < 4 && x4 + p < W; ++p) {
           const std::size_t o = static_cast<std::size_t>(y) * W + x4 + p;
           glm::vec3 v(0.0f);
