@@ -38,6 +38,17 @@ TrainState make_train(const Scene& scene, const CompensatorPlate& comp, double w
   return t;
 }
 
+TrainState train_in_specimen_frame(const TrainState& lab, double stage_rad) {
+  const double c = std::cos(stage_rad), s = std::sin(stage_rad);
+  const auto turn = [&](const glm::dvec2& v) { return glm::dvec2(c * v.x + s * v.y, -s * v.x + c * v.y); };  // R(−θ)·v
+  TrainState t = lab;
+  t.polarizer = turn(lab.polarizer);
+  for (int o = 0; o < 2; ++o) t.output[o] = turn(lab.output[o]);
+  for (int m = 0; m < 2; ++m) t.comp_dir[m] = turn(lab.comp_dir[m]);
+  t.comp_jones = rotation(-stage_rad) * lab.comp_jones * rotation(stage_rad);
+  return t;
+}
+
 JonesVector jones_output(const TrainState& t, const JonesMatrix& sample, int o) {
   const JonesVector in{t.polarizer.x, t.polarizer.y};
   const JonesVector e = t.comp_jones * (sample * in);

@@ -35,6 +35,13 @@ struct TrainState {
 
 TrainState make_train(const Scene& scene, const CompensatorPlate& comp, double wavelength_nm);
 
+// The same train seen from a specimen turned by stage_rad (counter-clockwise, as the stage): every
+// lab-fixed direction — polarizer, analyzer, the accessory's slot — turned by −stage_rad, the
+// accessory's Jones matrix J as R(−θ)·J·R(θ). Lenses are figures of revolution, so a stage-0°
+// specimen in this train transmits what the turned specimen does in the lab's (docs/physics.md,
+// "One response, many settings").
+TrainState train_in_specimen_frame(const TrainState& lab, double stage_rad);
+
 // Transmitted intensity for a sample given by its Jones matrix (exact, at the wavelength).
 double jones_transmission(const TrainState& train, const JonesMatrix& sample);
 JonesVector jones_output(const TrainState& train, const JonesMatrix& sample, int output);

@@ -229,66 +229,67 @@ glm::dvec3 modal_plain_xyz(const ModalTerms& m, const SpectralLevel& L, double* 
 
 constexpr int kChunk = 256;  // the plain path's band arrays on the stack
 
-glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
-  if (!plan.compensator().present && !L.monochromatic) {
-    alignas(32) double va[kChunk + 3], vb[kChunk + 3];
-    if (L.n <= kChunk) {
-      const EvalUnit& unit = plan.units()[u];
-      const int D = plan.dirs_of(unit);
-      glm::dvec3 xyz(0.0);
-      for (int d = 0; d < D; ++d)
-        xyz += modal_plain_xyz(plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d], L,
-                               va, vb);
-      xyz /= D;
-      for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(xyz[k])) xyz[k] = 0.0;
-      return xyz;
-    }
-  }
-  const EvalUnit& unit = plan.units()[u];
-  const int D = plan.dirs_of(unit);
-  const bool comp = plan.compensator().present;
+// The general band loop of one direction's terms (a compensator's χ terms, one spectral line, or
+// more bands than the plain path holds), added to `xyz` band by band.
+void modal_general_xyz(const ModalTerms& m, const SpectralLevel& L, bool comp, glm::dvec3& xyz) {
   const double two_pi = 6.283185307179586;
   const double h = L.band_nm;
-  glm::dvec3 xyz(0.0);
-  for (int d = 0; d < D; ++d) {
-    const ModalTerms& m = plan.modal_terms()[static_cast<std::size_t>(u) * plan.dirs_per_unit() + d];
-    for (int i = 0; i < L.n; ++i) {
-      const double* w = L.anchor_w[i].data();
-      const double* dw = L.anchor_dw[i].data();
-      const double lam = L.nm[i];
-      const double g = w[0] * m.gamma_nm[0] + w[1] * m.gamma_nm[1] + w[2] * m.gamma_nm[2];
-      const double dg = dw[0] * m.gamma_nm[0] + dw[1] * m.gamma_nm[1] + dw[2] * m.gamma_nm[2];
-      const double phi = two_pi * g / lam;                        // φ = 2πΓ/λ
-      const double dphi = two_pi * (dg / lam - g / (lam * lam));  // dφ/dλ
-      double c[5];
-      for (int k = 0; k < 5; ++k) c[k] = w[0] * m.c[k][0] + w[1] * m.c[k][1] + w[2] * m.c[k][2];
-      const double dc0 = dw[0] * m.c[0][0] + dw[1] * m.c[0][1] + dw[2] * m.c[0][2];
-      const glm::dvec3& W = L.weight[i];
-      const glm::dvec3& M = L.moment[i];
-      xyz += W * c[0] + M * dc0;
-      if (L.monochromatic) {
-        xyz += W * (c[1] * std::cos(phi));
-        if (comp) {
-          const double chi = L.train[i].chi_rad;
-          xyz += W * (c[2] * std::cos(chi) + c[3] * std::cos(phi + chi) + c[4] * std::cos(phi - chi));
-        }
-        continue;
-      }
-      const glm::dvec3 M6h = M * (6.0 / h);
-      if (c[1] != 0.0) xyz += c[1] * oscillating_band(W, M6h, phi, dphi, h);
+  for (int i = 0; i < L.n; ++i) {
+    const double* w = L.anchor_w[i].data();
+    const double* dw = L.anchor_dw[i].data();
+    const double lam = L.nm[i];
+    const double g = w[0] * m.gamma_nm[0] + w[1] * m.gamma_nm[1] + w[2] * m.gamma_nm[2];
+    const double dg = dw[0] * m.gamma_nm[0] + dw[1] * m.gamma_nm[1] + dw[2] * m.gamma_nm[2];
+    const double phi = two_pi * g / lam;                        // φ = 2πΓ/λ
+    const double dphi = two_pi * (dg / lam - g / (lam * lam));  // dφ/dλ
+    double c[5];
+    for (int k = 0; k < 5; ++k) c[k] = w[0] * m.c[k][0] + w[1] * m.c[k][1] + w[2] * m.c[k][2];
+    const double dc0 = dw[0] * m.c[0][0] + dw[1] * m.c[0][1] + dw[2] * m.c[0][2];
+    const glm::dvec3& W = L.weight[i];
+    const glm::dvec3& M = L.moment[i];
+    xyz += W * c[0] + M * dc0;
+    if (L.monochromatic) {
+      xyz += W * (c[1] * std::cos(phi));
       if (comp) {
-        const double chi = L.train[i].chi_rad, dchi = L.train[i].dchi_dnm;
-        if (c[2] != 0.0) xyz += c[2] * oscillating_band(W, M6h, chi, dchi, h);
-        if (c[3] != 0.0) xyz += c[3] * oscillating_band(W, M6h, phi + chi, dphi + dchi, h);
-        if (c[4] != 0.0) xyz += c[4] * oscillating_band(W, M6h, phi - chi, dphi - dchi, h);
+        const double chi = L.train[i].chi_rad;
+        xyz += W * (c[2] * std::cos(chi) + c[3] * std::cos(phi + chi) + c[4] * std::cos(phi - chi));
       }
+      continue;
     }
+    const glm::dvec3 M6h = M * (6.0 / h);
+    if (c[1] != 0.0) xyz += c[1] * oscillating_band(W, M6h, phi, dphi, h);
+    if (comp) {
+      const double chi = L.train[i].chi_rad, dchi = L.train[i].dchi_dnm;
+      if (c[2] != 0.0) xyz += c[2] * oscillating_band(W, M6h, chi, dchi, h);
+      if (c[3] != 0.0) xyz += c[3] * oscillating_band(W, M6h, phi + chi, dphi + dchi, h);
+      if (c[4] != 0.0) xyz += c[4] * oscillating_band(W, M6h, phi - chi, dphi - dchi, h);
+    }
+  }
+}
+
+// A unit's XYZ from its directions' terms (`terms(d)`): the plain path's vector band loop where
+// it holds, else the general loop; the mean over the directions, non-finite sums zeroed.
+template <class Terms>
+glm::dvec3 modal_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u, bool comp, const Terms& terms) {
+  const EvalUnit& unit = plan.units()[u];
+  const int D = plan.dirs_of(unit);
+  glm::dvec3 xyz(0.0);
+  if (!comp && !L.monochromatic && L.n <= kChunk) {
+    alignas(32) double va[kChunk + 3], vb[kChunk + 3];
+    for (int d = 0; d < D; ++d) xyz += modal_plain_xyz(terms(d), L, va, vb);
+  } else {
+    for (int d = 0; d < D; ++d) modal_general_xyz(terms(d), L, comp, xyz);
   }
   xyz /= D;
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(xyz[k])) xyz[k] = 0.0;
   return xyz;
+}
+
+glm::dvec3 modal_unit_xyz(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
+  const std::size_t first = static_cast<std::size_t>(u) * plan.dirs_per_unit();
+  return modal_xyz(plan, L, u, plan.compensator().present,
+                   [&](int d) -> const ModalTerms& { return plan.modal_terms()[first + d]; });
 }
 
 }  // namespace
@@ -332,6 +333,19 @@ void evaluate_unit_in_trains(const EvaluationPlan& plan, const SpectralLevel& L,
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(xyz[t][k])) xyz[t][k] = 0.0;
   }
+}
+
+glm::dvec3 evaluate_unit_in_train(const EvaluationPlan& plan, const SpectralLevel& L, const TrainState& train,
+                                  int u) {
+  if (plan.needs_exact(u)) return evaluate_unit(plan, L, u);
+  const EvalUnit& unit = plan.units()[u];
+  const double scale = modal_thickness_scale(unit, plan.domains()[unit.domain]);
+  const std::size_t first = static_cast<std::size_t>(u) * plan.dirs_per_unit();
+  return modal_xyz(plan, L, u, train.comp_modes == 2, [&](int d) {
+    glm::dmat2 jc, jo;
+    plan.lens_jones(plan.dir(unit, d), jc, jo);
+    return make_modal_terms(plan.modal_fits()[first + d], train, scale, &jc, &jo);
+  });
 }
 
 glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& L, int u) {
