@@ -61,8 +61,8 @@ TEST(InstrumentResponse, KindFollowsTheViewAndTheSlot) {
   EXPECT_EQ(response_kind(traced), ResponseKind::Traced);
   traced.compensator = Compensator::Gypsum;  // applied to the traced response
   EXPECT_EQ(response_kind(traced), ResponseKind::Traced);
-  traced.optics.relief = false;  // the flat section image: its own probes, but not with an accessory
-  EXPECT_EQ(response_kind(traced), ResponseKind::None);
+  traced.optics.relief = false;  // the flat section image: its probes, and its plan for the accessory
+  EXPECT_EQ(response_kind(traced), ResponseKind::Flat);
   traced.compensator = Compensator::None;
   EXPECT_EQ(response_kind(traced), ResponseKind::Flat);
   Scene plate = traced;  // one evaluation for the whole field: rendered per setting
@@ -110,8 +110,10 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
   next = flat;
   next.stage_deg = 50.0;
   EXPECT_TRUE(response_serves(flat, next));
+  next.compensator = Compensator::Gypsum;  // the canvas's plan evaluated in the frame's train
+  EXPECT_TRUE(response_serves(flat, next));
+  next = figure;
   next.compensator = Compensator::Gypsum;
-  EXPECT_FALSE(response_serves(flat, next));
   EXPECT_FALSE(response_serves(next, next));  // no response: every setting is rendered
   EXPECT_FALSE(response_serves(traced, flat));
   EXPECT_FALSE(response_serves(traced, figure));

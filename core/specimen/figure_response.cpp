@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/mat3x3.hpp>
 #include <tbb/parallel_for.h>
@@ -18,6 +19,7 @@
 #include "core/render/image_develop.h"
 #include "core/render/progressive_renderer.h"
 #include "core/render/spectral_level.h"
+#include "core/spectrum/cie.h"
 #include "core/spectrum/color.h"
 
 namespace pmsim {
@@ -56,7 +58,7 @@ int flat_canvas_scale(int width, int height) {
 }
 
 bool flat_response_applies(const Scene& scene) {
-  if (scene.mode != ViewMode::Ortho || scene.bertrand_in || scene.compensator != Compensator::None) return false;
+  if (scene.mode != ViewMode::Ortho || scene.bertrand_in) return false;
   // Sections only: a plate or the empty stage is one evaluation for the whole field (a render of
   // a few ms, no cheaper composed), and a wedge's thickness runs across the rendered field.
   if (!scene.sample_in || scene.sample.type != SampleType::Section) return false;
@@ -134,10 +136,12 @@ std::optional<FigureResponse> render_figure_response(const Scene& scene, int thr
 namespace {
 
 // Probe k = 3·i + j: stage 0°, the analyzer at kFigureProbeDeg[i], the polarizer at kFigureProbeDeg[j],
-// at the figure's converged spectral level.
+// at the figure's converged spectral level, no accessory (a flat view's frames with one evaluate
+// the canvas's plan instead).
 Scene probe_scene(const Scene& scene, int k, int wavelengths) {
   Scene s = scene;
   s.stage_deg = 0.0;
+  s.compensator = Compensator::None;
   s.analyzer_in = true;
   s.analyzer_deg = kFigureProbeDeg[k / 3];
   s.polarizer_deg = kFigureProbeDeg[k % 3];
@@ -195,6 +199,10 @@ bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool
     develop_image(*plan, xyz[k], false, img, cancel);
     store_probe(r, k, img.xyz);
   }
+  if (r.flat) {
+    r.plan = plan;
+    r.level = std::make_shared<const SpectralLevel>(level);
+  }
   return !(cancel && cancel->load());
 }
 
@@ -232,6 +240,12 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
     if (cancelled()) return std::nullopt;
   }
   if (r.flat) {  // the canvas covers the view at every angle: nothing unlit, no rim to fill
+    if (!r.plan) {  // the probes were rendered one by one: the accessory's frames need the plan too
+      const Scene base = probe_scene(grid, 0, r.wavelengths);
+      r.plan = compile_evaluation_plan(base, cancel, true);
+      if (!r.plan) return std::nullopt;
+      r.level = std::make_shared<const SpectralLevel>(make_spectral_level(*r.plan, r.wavelengths));
+    }
     r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
   }
@@ -278,6 +292,50 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
           g[2] = sum[2][p];
           g[3] = 0.0f;
         }
+      }
+  });
+  return grid;
+}
+
+// A flat view with an accessory: the canvas's units evaluated in the frame's train turned into the
+// specimen's frame (the stage-0° canvas's crystals, the polars and slot at −θ), then the canvas
+// developed as its render would be (develop_image: each point the weighted sum of its units) at
+// the points the frame reads, in the layout contract_grid gives.
+std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in,
+                                const std::vector<std::pair<int, int>>& spans) {
+  const EvaluationPlan& plan = *r.plan;
+  Scene lab = plan.scene();
+  lab.polarizer_deg = degrees(in.polarizer_rad);
+  lab.analyzer_in = in.analyzer_in;
+  lab.analyzer_deg = degrees(in.analyzer_rad);
+  lab.compensator = in.compensator;
+  lab.compensator_position = in.compensator_position;
+  const CompensatorPlate comp = make_compensator(in.compensator, in.compensator_position);
+  SpectralLevel level = level_in_train(*r.level, lab, comp);
+  for (TrainState& t : level.train) t = train_in_specimen_frame(t, in.stage_rad);
+  const TrainState train = train_in_specimen_frame(make_train(lab, comp, 550.0), in.stage_rad);
+  const int units = static_cast<int>(plan.units().size());
+  std::vector<glm::vec3> unit_xyz(units);
+  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
+  tbb::parallel_for(tbb::blocked_range<int>(0, units, 64), [&](const tbb::blocked_range<int>& b) {
+    for (int u = b.begin(); u != b.end(); ++u) {
+      const glm::dvec3 v = evaluate_unit_in_train(plan, level, train, u);
+      unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
+    }
+  });
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  std::vector<float> grid(4 * n);
+  const std::vector<int>& offset = plan.pixel_offset();
+  const std::vector<PixelRef>& refs = plan.refs();
+  tbb::parallel_for(tbb::blocked_range<int>(0, r.height, 4), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = spans[y].first; x < spans[y].second; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * r.width + x;
+        glm::vec3 v(0.0f);
+        for (int k = offset[i]; k < offset[i + 1]; ++k) v += unit_xyz[refs[k].unit] * refs[k].weight;
+        float* g = &grid[4 * i];
+        for (int c = 0; c < 3; ++c) g[c] = std::isfinite(v[c]) ? v[c] : 0.0f;
+        g[3] = 0.0f;
       }
   });
   return grid;
@@ -330,9 +388,13 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
     return glm::dvec2(g.x * half + 0.5 * GW - 0.5, 0.5 * GH - g.y * half - 0.5);
   };
   const glm::dvec2 origin = to_grid(0, 0), ex = to_grid(1, 0) - origin, ey = to_grid(0, 1) - origin;
-  // The view at these polars, stage 0°, where the frame reads it; then read turned by the stage.
-  const std::vector<float> grid =
-      contract_grid(r, w, read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)}));
+  // The view at these settings, stage 0°, where the frame reads it; then read turned by the stage.
+  const std::vector<std::pair<int, int>> spans =
+      read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)});
+  if (in.compensator != Compensator::None && !r.plan)
+    throw std::logic_error("compose_figure: an accessory in a figure's response (it is rendered per setting)");
+  const std::vector<float> grid = in.compensator != Compensator::None ? develop_grid(r, in, spans)
+                                                                       : contract_grid(r, w, spans);
   const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;

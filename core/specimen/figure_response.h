@@ -24,6 +24,13 @@
 // specimen and the analyzer (a gypsum plate or wedge in the slot: figure_response_applies is
 // false and the figure is rendered afresh).
 //
+// A flat view keeps, beside its probes, the canvas's evaluation plan with its modal fits: with an
+// accessory in the slot a frame evaluates the canvas's units (one per grain or lamella, a few per
+// boundary pixel's sub-samples) in the frame's train turned into the specimen's frame
+// (train_in_specimen_frame: polars and slot at −θ), develops the canvas rows the frame reads and
+// reads them turned as above — exact at every accessory, wedge position and polar setting, at the
+// cost of the units' band sums each frame.
+//
 // A flat orthoscopic view of a thin section (no relief, or an EBSD map; flat_response_applies) is the
 // same bilinear form per image point, and the same rotation argument holds (condenser and
 // objective apertures are circular): its probes are rendered at stage 0° on a square canvas at the
@@ -40,6 +47,7 @@
 
 #include "core/microscope/scene.h"
 #include "core/render/render_image.h"
+#include "core/render/spectral_level.h"
 #include "core/specimen/specimen_response.h"
 
 namespace pmsim {
@@ -68,8 +76,8 @@ int flat_canvas_scale(int width, int height);
 // Whether a flat orthoscopic view is served by probes (the traced specimens aside, which
 // response_kind tells first): a thin section (a plate or the empty stage is one evaluation for the
 // whole field, and a wedge's thickness runs across the rendered field, so a larger canvas would be
-// another wedge) in the orthoscope, Bertrand lens out, no accessory, its canvas within
-// kMaxFlatCanvasPixels and the field-number limit.
+// another wedge) in the orthoscope, Bertrand lens out, its canvas within kMaxFlatCanvasPixels and
+// the field-number limit. Any accessory: frames with one are composed from the canvas's plan.
 bool flat_response_applies(const Scene& scene);
 
 struct FigureResponse {
@@ -87,6 +95,10 @@ struct FigureResponse {
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
   // read nearest-neighbour (the same planes); empty when there is none.
   std::vector<float> outside;
+  // A flat view's canvas plan, its modal fits kept, and the spectral level of the probes (null for
+  // a figure): what a frame with an accessory evaluates (the header).
+  std::shared_ptr<const EvaluationPlan> plan;
+  std::shared_ptr<const SpectralLevel> level;
   // The spectral level the probes were rendered at, and the convergence of the figure's own
   // render at the scene's settings (what every composed image carries).
   int wavelengths = 0;
@@ -106,7 +118,8 @@ std::optional<FigureResponse> render_figure_response(const Scene& scene, int thr
 std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads = 0,
                                                    const std::atomic<bool>* cancel = nullptr);
 
-// The figure at `instrument` (its compensator must be none): XYZ and linear sRGB.
+// The figure at `instrument` (a figure's compensator must be none; a flat view's may be any): XYZ
+// and linear sRGB.
 RenderImage compose_figure(const FigureResponse& response, const InstrumentSettings& instrument);
 
 }  // namespace pmsim
