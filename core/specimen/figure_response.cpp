@@ -199,10 +199,37 @@ bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool
     develop_image(*plan, xyz[k], false, img, cancel);
     store_probe(r, k, img.xyz);
   }
-  if (r.flat) {
-    r.plan = plan;
-    r.level = std::make_shared<const SpectralLevel>(level);
+  return !(cancel && cancel->load());
+}
+
+// A flat view's probes, per unit: the canvas's plan compiled once with its fits kept, and every
+// unit evaluated in the nine probes' trains (evaluate_unit_in_train: exact units band by band, one
+// spectral line as the renderer takes it). A section has few units — one per grain or lamella,
+// boundary pixels' sub-samples as weights on them — so 27 floats a unit replace 27 a canvas pixel,
+// and a frame develops the canvas from them (develop_grid). False when cancelled.
+bool flat_unit_probes(const Scene& grid, FigureResponse& r, const std::atomic<bool>* cancel) {
+  r.plan = compile_evaluation_plan(probe_scene(grid, 0, r.wavelengths), cancel, true);
+  if (!r.plan) return false;
+  const SpectralLevel level = make_spectral_level(*r.plan, r.wavelengths);
+  const CompensatorPlate none = make_compensator(Compensator::None, 0.0);
+  std::vector<SpectralLevel> levels;
+  std::vector<TrainState> trains;
+  for (int k = 0; k < 9; ++k) {
+    const Scene s = probe_scene(grid, k, r.wavelengths);
+    levels.push_back(level_in_train(level, s, none));
+    trains.push_back(make_train(s, none, 550.0));
   }
+  const int units = static_cast<int>(r.plan->units().size());
+  r.unit_probes.assign(static_cast<std::size_t>(units) * kProbeFloats, 0.0f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, units, 16), [&](const tbb::blocked_range<int>& b) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    for (int u = b.begin(); u != b.end(); ++u)
+      for (int k = 0; k < 9; ++k) {
+        const glm::dvec3 v = evaluate_unit_in_train(*r.plan, levels[k], trains[k], u);
+        for (int c = 0; c < 3; ++c) r.unit_probes[static_cast<std::size_t>(u) * kProbeFloats + 3 * k + c] = static_cast<float>(v[c]);
+      }
+  });
+  r.level = std::make_shared<const SpectralLevel>(level);
   return !(cancel && cancel->load());
 }
 
@@ -227,27 +254,22 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   r.progress = own;
   r.progress.rgb.clear();
   r.progress.xyz.clear();
+  tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
+  if (r.flat) {  // the canvas covers the view at every angle: nothing unlit, no rim to fill
+    bool ok = false;
+    arena.execute([&] { ok = flat_unit_probes(grid, r, cancel); });
+    if (!ok || cancelled()) return std::nullopt;
+    r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  }
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   r.probes.assign(n * kProbeFloats, 0.0f);
   bool shared = false;
-  if (!r.monochromatic) {
-    tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
-    arena.execute([&] { shared = shared_probes(grid, r, cancel); });
-  }
+  if (!r.monochromatic) arena.execute([&] { shared = shared_probes(grid, r, cancel); });
   if (cancelled()) return std::nullopt;
   for (int k = 0; k < 9 && !shared; ++k) {
     store_probe(r, k, ProgressiveRenderer::render(probe_scene(grid, k, r.wavelengths), threads).xyz);
     if (cancelled()) return std::nullopt;
-  }
-  if (r.flat) {  // the canvas covers the view at every angle: nothing unlit, no rim to fill
-    if (!r.plan) {  // the probes were rendered one by one: the accessory's frames need the plan too
-      const Scene base = probe_scene(grid, 0, r.wavelengths);
-      r.plan = compile_evaluation_plan(base, cancel, true);
-      if (!r.plan) return std::nullopt;
-      r.level = std::make_shared<const SpectralLevel>(make_spectral_level(*r.plan, r.wavelengths));
-    }
-    r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return r;
   }
   r.lit = figure_disc(scene);
   bool light_outside = false;
@@ -297,13 +319,26 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
   return grid;
 }
 
-// A flat view with an accessory: the canvas's units evaluated in the frame's train turned into the
-// specimen's frame (the stage-0° canvas's crystals, the polars and slot at −θ), then the canvas
-// developed as its render would be (develop_image: each point the weighted sum of its units) at
-// the points the frame reads, in the layout contract_grid gives.
-std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in,
-                                const std::vector<std::pair<int, int>>& spans) {
+// A flat view's units at the frame's settings, stage 0°: without an accessory the nine unit
+// probes combined with the frame's weights; with one, every unit evaluated in the frame's train
+// turned into the specimen's frame (the stage-0° canvas's crystals, the polars and slot at −θ).
+std::vector<glm::vec3> flat_units(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w) {
   const EvaluationPlan& plan = *r.plan;
+  const int units = static_cast<int>(plan.units().size());
+  std::vector<glm::vec3> unit_xyz(units);
+  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
+  const auto store = [&](int u, const glm::dvec3& v) {
+    unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
+  };
+  if (in.compensator == Compensator::None) {
+    for (int u = 0; u < units; ++u) {
+      const float* p = &r.unit_probes[static_cast<std::size_t>(u) * kProbeFloats];
+      glm::dvec3 v(0.0);
+      for (int k = 0; k < 9; ++k) v += static_cast<double>(w[k]) * glm::dvec3(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+      store(u, v);
+    }
+    return unit_xyz;
+  }
   Scene lab = plan.scene();
   lab.polarizer_deg = degrees(in.polarizer_rad);
   lab.analyzer_in = in.analyzer_in;
@@ -314,15 +349,18 @@ std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSetting
   SpectralLevel level = level_in_train(*r.level, lab, comp);
   for (TrainState& t : level.train) t = train_in_specimen_frame(t, in.stage_rad);
   const TrainState train = train_in_specimen_frame(make_train(lab, comp, 550.0), in.stage_rad);
-  const int units = static_cast<int>(plan.units().size());
-  std::vector<glm::vec3> unit_xyz(units);
-  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
   tbb::parallel_for(tbb::blocked_range<int>(0, units, 64), [&](const tbb::blocked_range<int>& b) {
-    for (int u = b.begin(); u != b.end(); ++u) {
-      const glm::dvec3 v = evaluate_unit_in_train(plan, level, train, u);
-      unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
-    }
+    for (int u = b.begin(); u != b.end(); ++u) store(u, evaluate_unit_in_train(plan, level, train, u));
   });
+  return unit_xyz;
+}
+
+// The flat view's canvas developed as its render would be (develop_image: each point the weighted
+// sum of its units) at the points the frame reads, in the layout contract_grid gives.
+std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w,
+                                const std::vector<std::pair<int, int>>& spans) {
+  const EvaluationPlan& plan = *r.plan;
+  const std::vector<glm::vec3> unit_xyz = flat_units(r, in, w);
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   std::vector<float> grid(4 * n);
   const std::vector<int>& offset = plan.pixel_offset();
@@ -391,10 +429,9 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   // The view at these settings, stage 0°, where the frame reads it; then read turned by the stage.
   const std::vector<std::pair<int, int>> spans =
       read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)});
-  if (in.compensator != Compensator::None && !r.plan)
+  if (!r.flat && in.compensator != Compensator::None)
     throw std::logic_error("compose_figure: an accessory in a figure's response (it is rendered per setting)");
-  const std::vector<float> grid = in.compensator != Compensator::None ? develop_grid(r, in, spans)
-                                                                       : contract_grid(r, w, spans);
+  const std::vector<float> grid = r.flat ? develop_grid(r, in, w, spans) : contract_grid(r, w, spans);
   const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;

@@ -33,12 +33,19 @@
 //
 // A flat orthoscopic view of a thin section (no relief, or an EBSD map; flat_response_applies) is the
 // same bilinear form per image point, and the same rotation argument holds (condenser and
-// objective apertures are circular): its probes are rendered at stage 0° on a square canvas at the
-// view's pixel pitch that holds the view at every stage angle (the view's circumscribed circle and
-// the cubic's reach), and a frame reads the view's pixels turned out of it. A small view's canvas
-// is finer than its pixels (flat_canvas_scale): a frame box-filters k × k canvas readings over
-// each view pixel, so the grain boundaries a pixel straddles are read as its area, not as the
-// cubic's blend of two neighbours' partial pixels.
+// objective apertures are circular). Its image is a sum over few evaluation units — one per grain
+// or lamella in parallel light, boundary pixels' sub-samples as weights on them — so its probes are
+// taken per unit, not per pixel: a canvas at the view's pixel pitch that holds the view at every
+// stage angle (the view's circumscribed circle and the cubic's reach) is compiled once at stage 0°
+// (its evaluation plan, modal fits kept), every unit is evaluated in the nine probe trains, and a
+// frame combines each unit's nine with its weights, develops the canvas rows it reads (each point
+// the weighted sum of its units, as the renderer develops an image) and reads the view's pixels
+// turned out of it. With an accessory in the slot the frame evaluates every unit in its own train
+// turned into the specimen's frame (train_in_specimen_frame: polars and slot at −θ) instead —
+// exact at every accessory, wedge position and polar setting, for the units' band sums each frame.
+// A small view's canvas is finer than its pixels (flat_canvas_scale): a frame box-filters k × k
+// canvas readings over each view pixel, so the grain boundaries a pixel straddles are read as its
+// area, not as the cubic's blend of two neighbours' partial pixels.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -58,9 +65,10 @@ inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
 // Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
 // conoscopic mode, no accessory in the slot.
 bool figure_response_applies(const Scene& scene);
-// A flat view's probes hold 27 floats a canvas pixel, and the canvas has about twice the view's
-// pixels: 1536² canvas pixels (a view up to ~1080², 255 MB of probes) is where a view is rendered
-// per setting instead (the app's views are 512–1024²; a 2048² view's probes would take 0.9 GB).
+// A flat view's canvas plan holds each canvas pixel's unit references (~16 B) and a frame develops
+// a 4-float grid (16 B), on a canvas of about twice the view's pixels: 1536² canvas pixels (a view
+// up to ~1080², ~75 MB) is where a view is rendered per setting instead (the app's views are
+// 512–1024²; a 2048² view's canvas would be 8.4 M pixels).
 inline constexpr long long kMaxFlatCanvasPixels = 1536LL * 1536LL;
 // A flat canvas narrower than kFlatCanvasMinSide view pixels is rendered k ≤ kMaxFlatCanvasScale
 // times finer: at 32² (canvas 50 px) a granite view's pixel straddles a grain boundary in one
@@ -86,17 +94,20 @@ struct FigureResponse {
   bool flat = false;                       // a flat orthoscopic view's canvas, not a figure
   int scale = 1;  // canvas pixels per view pixel along each axis (flat_canvas_scale; a figure: 1)
   bool monochromatic = false;  // render.single_wavelength_nm: R = G = B = Y
-  // 27 planes of width × height floats: plane 3·(3·i + j) + c holds channel c (X, Y, Z) of the
-  // probe with the analyzer at kFigureProbeDeg[i] and the polarizer at kFigureProbeDeg[j]
-  // (planes: a frame's contraction is nine contiguous multiply-adds that vectorise). Unlit pixels
-  // next to the disc hold their nearest lit neighbour (the cubic's reach).
+  // A figure's probes: 27 planes of width × height floats: plane 3·(3·i + j) + c holds channel c
+  // (X, Y, Z) of the probe with the analyzer at kFigureProbeDeg[i] and the polarizer at
+  // kFigureProbeDeg[j] (planes: a frame's contraction is nine contiguous multiply-adds that
+  // vectorise). Unlit pixels next to the disc hold their nearest lit neighbour (the cubic's reach).
+  // Empty for a flat view.
   std::vector<float> probes;
+  // A flat view's probes per unit of `plan`: 27 floats a unit, 3·(3·i + j) + c as above.
+  std::vector<float> unit_probes;
   std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant) on the image; empty: all lit
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
   // read nearest-neighbour (the same planes); empty when there is none.
   std::vector<float> outside;
   // A flat view's canvas plan, its modal fits kept, and the spectral level of the probes (null for
-  // a figure): what a frame with an accessory evaluates (the header).
+  // a figure): the units a frame develops the canvas from (the header).
   std::shared_ptr<const EvaluationPlan> plan;
   std::shared_ptr<const SpectralLevel> level;
   // The spectral level the probes were rendered at, and the convergence of the figure's own
