@@ -186,8 +186,8 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
   // (a 4-neighbour differs) need the sub-pixel samples.
   const bool section_map = on_stage && type == SampleType::Section && n > 1;
   std::vector<int> centre_domain;
+  const FieldToSection to_section(scene);
   if (section_map) {
-    const FieldToSection to_section(scene);
     centre_domain.resize(static_cast<std::size_t>(W) * H);
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& r) {
       if (cancelled(cancel)) return;
@@ -198,11 +198,15 @@ std::optional<PixelView> field_view(const Scene& scene, const OpticalDomains& do
     });
     if (cancelled(cancel)) return std::nullopt;
   }
+  // A neighbour beyond the image's edge is looked up in the section too: an edge pixel whose
+  // neighbour across a boundary lies outside the image straddles that boundary all the same (a
+  // render of a larger field, or a flat response's canvas, samples it there).
   auto interior = [&](int x, int y) {
     const int d = centre_domain[static_cast<std::size_t>(y) * W + x];
     auto same = [&](int xx, int yy) {
-      return xx < 0 || yy < 0 || xx >= W || yy >= H ||
-             centre_domain[static_cast<std::size_t>(yy) * W + xx] == d;
+      if (xx < 0 || yy < 0 || xx >= W || yy >= H)
+        return domains.domain_at_sample(to_section(field_from_pixel(W, H, xx + 0.5, yy + 0.5))) == d;
+      return centre_domain[static_cast<std::size_t>(yy) * W + xx] == d;
     };
     return same(x - 1, y) && same(x + 1, y) && same(x, y - 1) && same(x, y + 1);
   };
