@@ -6,11 +6,13 @@
 //    polarizer or stage-angle change must restart the image without rebuilding (seconds); another
 //    key frees the old value before building, so two are never held (a slab can take a GB);
 //  - Keep::All — small things read once per process (sections, tables), kept for its life.
-// The build runs under the cache's lock, so that two callers with the same key build it once; a
-// build that throws leaves the cache as it was (Keep::Last: empty). It runs isolated
-// (tbb::this_task_arena::isolate): a build's own parallel loops (a rock's tiling, Embree's BVH)
-// then never let the thread holding the lock take up an outer task that asks this cache again
-// and waits on the lock it holds.
+// Two callers with the same key build it once: Keep::Last builds under the cache's one lock (one
+// value at a time, by design); Keep::All under the key's own lock, so that a lookup of one key
+// never waits while another key builds (the app asks for the section it shows on its UI thread
+// while a worker grows another rock). A build that throws leaves the cache as it was
+// (Keep::Last: empty). It runs isolated (tbb::this_task_arena::isolate): a build's own parallel
+// loops (a rock's tiling, Embree's BVH) then never let the thread holding a lock take up an outer
+// task that asks this cache again and waits on the lock it holds.
 #include <map>
 #include <memory>
 #include <mutex>
@@ -28,8 +30,8 @@ class BuildCache {
   // The value of `key`, from `build()` (returning std::shared_ptr<const T> or <T>) the first time.
   template <class Build>
   std::shared_ptr<const T> get(const Key& key, Build build) {
-    std::lock_guard<std::mutex> lock(mutex_);
     if constexpr (policy == Keep::Last) {
+      std::lock_guard<std::mutex> lock(mutex_);
       if (last_ && last_key_ == key) return last_;
       last_.reset();
       std::shared_ptr<const T> v = isolated(build);
@@ -37,14 +39,33 @@ class BuildCache {
       last_ = v;
       return v;
     } else {
-      if (const auto it = kept_.find(key); it != kept_.end()) return it->second;
-      std::shared_ptr<const T> v = isolated(build);
-      kept_.emplace(key, v);
-      return v;
+      std::shared_ptr<Slot> slot;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        std::shared_ptr<Slot>& s = kept_[key];
+        if (!s) s = std::make_shared<Slot>();
+        slot = s;
+      }
+      std::lock_guard<std::mutex> lock(slot->mutex);
+      if (!slot->value) {
+        try {
+          slot->value = isolated(build);
+        } catch (...) {
+          std::lock_guard<std::mutex> map_lock(mutex_);
+          if (const auto it = kept_.find(key); it != kept_.end() && it->second == slot) kept_.erase(it);
+          throw;
+        }
+      }
+      return slot->value;
     }
   }
 
  private:
+  struct Slot {  // one key's value, built under its own lock
+    std::mutex mutex;
+    std::shared_ptr<const T> value;
+  };
+
   template <class Build>
   static std::shared_ptr<const T> isolated(Build& build) {
     std::shared_ptr<const T> v;
@@ -55,7 +76,7 @@ class BuildCache {
   std::mutex mutex_;
   Key last_key_{};
   std::shared_ptr<const T> last_;
-  std::map<Key, std::shared_ptr<const T>> kept_;
+  std::map<Key, std::shared_ptr<Slot>> kept_;
 };
 
 }  // namespace pmsim
