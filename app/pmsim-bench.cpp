@@ -1,4 +1,5 @@
-// pmsim-bench --apply-settings [--size N] [--threads N]: only the response's apply-settings timing (a frame's work).
+// pmsim-bench --apply-settings [--size N] [--threads N]: only the responses' apply-settings timing (a frame's work:
+// the traced granite's Disc response and its flat view's).
 // pmsim-bench --rocks: only the rock-growth row (every recipe grown at 20 × 15 mm, time and memory).
 // pmsim-bench [--quick] [--json FILE] [--out-dir DIR] [--size N] [--threads N] [--cache-dir DIR]
 //             [--no-throughput] [--scene SUBSTR] [--strategy SUBSTR] [--images DIR] [--from-json FILE]
@@ -78,7 +79,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-throughput", no_throughput, "skip the ray-throughput measurement");
   app.add_flag("--apply-settings", apply_settings,
                "only time applying the settings to a --size² Disc response of the granite (stage 30°, and "
-               "with the gypsum plate; median of 15 frames each)");
+               "with the gypsum plate; median of 15 frames each), and to its flat view's response (a stage drag "
+               "without an accessory, with the gypsum plate and with the quartz wedge)");
   app.add_flag("--rocks", rocks,
                "only time growing every rock recipe of assets/rocks at 20 × 15 mm and reading it as a "
                "section (issue 22's target: ≤ 2 s and ≤ 1 GB each)");
@@ -115,7 +117,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (apply_settings) {
-      std::cout << pmsim::response_apply_note(opt.size > 0 ? opt.size : 512, 15, std::cerr) << "\n";
+      const int side = opt.size > 0 ? opt.size : 512;
+      std::cout << pmsim::response_apply_note(side, 15, std::cerr) << "\n"
+                << pmsim::flat_apply_note(side, 15, std::cerr) << "\n";
       return 0;
     }
     pmsim::BenchReport rep;

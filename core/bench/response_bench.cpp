@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
 #include "core/bench/image_error.h"
+#include "core/render/progressive_renderer.h"
+#include "core/specimen/figure_response.h"
 #include "core/specimen/forward_response.h"
 #include "core/specimen/grain_mount_render.h"
 #include "core/specimen/section_slab.h"
@@ -76,6 +79,49 @@ std::string response_apply_note(int compose_size, int frames, std::ostream& log)
                 "applying the settings to a %d² Disc response (%d×%d grid): %.2f ms (stage 30°), %.2f ms with the "
                 "gypsum plate (median of %d)",
                 compose_size, one.response->nx, one.response->ny, plain, with_plate, frames);
+  return buf;
+}
+
+std::string flat_apply_note(int size, int frames, std::ostream& log) {
+  Scene s = granite_crossed(size);
+  s.optics.relief = false;
+  log << "apply settings: the flat " << size << "² view's response… " << std::flush;
+  const double t0 = now_ms();
+  const std::optional<FigureResponse> r = render_figure_response(s);
+  const double response_ms = now_ms() - t0;
+  if (!r || !r->plan) throw std::runtime_error("flat_apply_note: the flat view's response was not rendered");
+  log << "done\n";
+  struct Case {
+    Compensator accessory;
+    double position;
+    double ms = 0.0, de = 0.0;
+  };
+  Case cases[] = {{Compensator::None, 0.0}, {Compensator::Gypsum, 0.0}, {Compensator::QuartzWedge, 0.4}};
+  const glm::dvec3 white = illuminant_white_xyz(s.illuminant);
+  for (Case& c : cases) {
+    std::vector<double> t;
+    Scene f = s;
+    f.compensator = c.accessory;
+    f.compensator_position = c.position;
+    f.render.wavelengths = r->wavelengths;
+    RenderImage img;
+    for (int i = 0; i < frames; ++i) {  // a drag of 1° a frame from 30°
+      f.stage_deg = 30.0 + i;
+      const double t1 = now_ms();
+      img = compose_figure(*r, instrument_settings(f));
+      t.push_back(now_ms() - t1);
+    }
+    std::sort(t.begin(), t.end());
+    c.ms = t[t.size() / 2];
+    c.de = image_error_de2000(img.xyz, ProgressiveRenderer::render(f).xyz, {}, white).mean_de2000;
+  }
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "applying the settings to the flat %d² granite view (relief off, %d×%d canvas, %zu units; response "
+                "%.0f ms): %.2f ms, %.2f ms with the gypsum plate, %.2f ms with the quartz wedge at 0.4 (median of %d "
+                "frames at stage 30°+; the last frame against a fresh render: mean ΔE00 %.2f / %.2f / %.2f)",
+                size, r->width, r->height, r->plan->units().size(), response_ms, cases[0].ms, cases[1].ms, cases[2].ms,
+                frames, cases[0].de, cases[1].de, cases[2].de);
   return buf;
 }
 
@@ -176,9 +222,10 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick
   notes.push_back(buf);
   log << "  " << buf << "\n";
   if (compose_size > 0) {
-    const std::string note = response_apply_note(compose_size, 15, log);
-    notes.push_back(note);
-    log << "  " << note << "\n";
+    for (const std::string& note : {response_apply_note(compose_size, 15, log), flat_apply_note(compose_size, 15, log)}) {
+      notes.push_back(note);
+      log << "  " << note << "\n";
+    }
   }
   return rows;
 }

@@ -24,4 +24,10 @@ std::vector<BenchRow> response_bench_rows(int size, int compose_size, bool quick
 // of `frames` wall times each, as one line.
 std::string response_apply_note(int compose_size, int frames, std::ostream& log);
 
+// The same for the flat view (issue 21): the granite at size², relief off, its flat response
+// (figure_response.h: probes per unit, the canvas's plan) composed during a 1°-a-frame stage drag
+// from 30° without an accessory, with the gypsum plate and with the quartz wedge at 0.4, the median
+// of `frames` wall times each, and the last frame's mean ΔE00 against a fresh render; one line.
+std::string flat_apply_note(int size, int frames, std::ostream& log);
+
 }  // namespace pmsim
