@@ -24,13 +24,6 @@
 // specimen and the analyzer (a gypsum plate or wedge in the slot: figure_response_applies is
 // false and the figure is rendered afresh).
 //
-// A flat view keeps, beside its probes, the canvas's evaluation plan with its modal fits: with an
-// accessory in the slot a frame evaluates the canvas's units (one per grain or lamella, a few per
-// boundary pixel's sub-samples) in the frame's train turned into the specimen's frame
-// (train_in_specimen_frame: polars and slot at −θ), develops the canvas rows the frame reads and
-// reads them turned as above — exact at every accessory, wedge position and polar setting, at the
-// cost of the units' band sums each frame.
-//
 // A flat orthoscopic view of a thin section (no relief, or an EBSD map; flat_response_applies) is the
 // same bilinear form per image point, and the same rotation argument holds (condenser and
 // objective apertures are circular). Its image is a sum over few evaluation units — one per grain
