@@ -61,14 +61,15 @@ glm::dvec3 evaluate_unit(const EvaluationPlan& plan, const SpectralLevel& level,
 // sum regrouped by anchor): the band loop runs once a direction, each train costs its terms
 // (make_modal_terms) and a few products. Only for units shares_band_loop accepts (modal, bands,
 // no compensator, at most 256 bands).
+bool shares_band_loop(const EvaluationPlan& plan, const SpectralLevel& level, int unit);
+void evaluate_unit_in_trains(const EvaluationPlan& plan, const SpectralLevel& level, int unit,
+                             const std::vector<TrainState>& trains, glm::dvec3* xyz);
+
 // One unit in another polarizing train, an accessory's included: what evaluate_unit gives on the
 // plan of a scene that differs from the plan's only in the polars and the accessory. `L` holds that
 // train per band (level_in_train, or trains turned by train_in_specimen_frame), `train` the same
 // train at 550 nm (the modal terms' directions, as the plan's own). Modal units from their fits (the
 // plan must keep them: compile_evaluation_plan's keep_fits), exact ones band by band in L's trains.
 glm::dvec3 evaluate_unit_in_train(const EvaluationPlan& plan, const SpectralLevel& L, const TrainState& train, int u);
-bool shares_band_loop(const EvaluationPlan& plan, const SpectralLevel& level, int unit);
-void evaluate_unit_in_trains(const EvaluationPlan& plan, const SpectralLevel& level, int unit,
-                             const std::vector<TrainState>& trains, glm::dvec3* xyz);
 
 }  // namespace pmsim
