@@ -9,9 +9,9 @@
 // --sweep renders one frame per value of an instrument key (stage_deg, polarizer_deg,
 // analyzer_deg, compensator_position) into the numbered files of --out (one printf integer
 // field); a traced specimen's response is traced once and composed at every value
-// (core/specimen/specimen_response.h), and a conoscopic figure without an accessory is rendered
-// once with its nine probes and composed at every stage angle and polar setting
-// (core/specimen/figure_response.h). --progress (or a terminal on stderr): a progress line.
+// (core/specimen/specimen_response.h), and a conoscopic figure or a section's flat view is rendered
+// once with its nine probes (and its plan, for frames with an accessory) and composed at every
+// value (core/specimen/figure_response.h). --progress (or a terminal on stderr): a progress line.
 // Bad input: a message naming file, key and value on stderr, exit code 2, no output file.
 #include <unistd.h>
 

@@ -204,7 +204,7 @@ TEST(FlatResponse, AnAccessoryAtATurnedStageIsTheFreshSectionWithinTheCubicsRead
     const RenderImage composed = compose_figure(*r, instrument_settings(s));
     const Difference d = difference(composed, ProgressiveRenderer::render(s));
     std::printf("stage %.0f°, accessory %d: mean ΔE00 %.3f\n", stage, static_cast<int>(c), d.mean_de);
-    // Measured 0.149 (gypsum, 30°) and 0.142 (wedge, 117°), as without an accessory (0.12–0.14
+    // Measured 0.143 (gypsum, 30°) and 0.137 (wedge, 117°), as without an accessory (0.12–0.14
     // above): the cubic reads the boundaries' partial pixels between canvas pixels, the units
     // themselves are exact in the turned train (render_units_in_trains_test: ≤ 1.4e-14). Issue 21's
     // bound 1.0 leaves 7× of margin; the slot turned the wrong way makes grains' additions

@@ -73,8 +73,11 @@ TEST(InstrumentResponse, KindFollowsTheViewAndTheSlot) {
 
   Scene figure = figure_scene();
   EXPECT_EQ(response_kind(figure), ResponseKind::Figure);
-  figure.compensator = Compensator::Gypsum;  // its retardance sits inside the figure's band sum
+  figure.compensator = Compensator::Gypsum;  // the figure's plan evaluated in the frame's train
+  EXPECT_EQ(response_kind(figure), ResponseKind::Figure);
+  figure.optics.lens_depth = 2;  // ghost light, reckoned per train in the plan: rendered per setting
   EXPECT_EQ(response_kind(figure), ResponseKind::None);
+  figure.optics.lens_depth = 1;
   figure.compensator = Compensator::None;
   figure.bertrand_in = false;
   EXPECT_EQ(response_kind(figure), ResponseKind::None);
@@ -102,8 +105,13 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
   next.stage_deg = 20.0;
   next.analyzer_in = false;
   EXPECT_TRUE(response_serves(figure, next));
-  next.compensator = Compensator::Gypsum;  // out of the figure response's reach
-  EXPECT_FALSE(response_serves(figure, next));
+  next.compensator = Compensator::Gypsum;  // the figure's plan evaluated in the frame's train
+  EXPECT_TRUE(response_serves(figure, next));
+  Scene ghosts = figure;
+  ghosts.optics.lens_depth = 2;
+  next = ghosts;
+  next.compensator = Compensator::Gypsum;  // out of the reach of a figure with ghost light
+  EXPECT_FALSE(response_serves(ghosts, next));
 
   Scene flat = traced;
   flat.optics.relief = false;
@@ -112,7 +120,7 @@ TEST(InstrumentResponse, ServesOnlyInstrumentChangesOnAViewThatHasOne) {
   EXPECT_TRUE(response_serves(flat, next));
   next.compensator = Compensator::Gypsum;  // the canvas's plan evaluated in the frame's train
   EXPECT_TRUE(response_serves(flat, next));
-  next = figure;
+  next = ghosts;
   next.compensator = Compensator::Gypsum;
   EXPECT_FALSE(response_serves(next, next));  // no response: every setting is rendered
   EXPECT_FALSE(response_serves(traced, flat));

@@ -16,11 +16,12 @@
 // more while the response is still being traced beside it) and snapshot() takes the newest
 // composed image, so the UI thread never waits for a composition and every image of a stage drag
 // shows its angle's colours at the response's convergence.
-// A conoscopic figure without an accessory (response_kind Figure), and a thin section's flat
-// image without one (Flat), are rendered by the progressive renderer first; once that has
+// A conoscopic figure (response_kind Figure) and a thin section's flat image (Flat) are
+// rendered by the progressive renderer first; once that has
 // converged, the feeder thread renders the view's nine probes (core/specimen/figure_response.h,
 // 2–3 renders' work; a flat view's on a canvas that holds it at every stage angle) and from then
-// on a submission that changes only the stage or the polars is composed from them by the composer
+// on a submission that changes only the stage, the polars or the accessory is composed from them
+// (an accessory's frames from the view's plan) by the composer
 // thread, as a traced specimen's ("figure mode" below covers both). Any other change drops the
 // response and restarts the renderer.
 #include <atomic>

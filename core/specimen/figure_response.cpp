@@ -25,7 +25,9 @@
 namespace pmsim {
 
 bool figure_response_applies(const Scene& scene) {
-  return scene.bertrand_in && scene.mode == ViewMode::Cono && scene.compensator == Compensator::None;
+  if (!scene.bertrand_in || scene.mode != ViewMode::Cono) return false;
+  // Ghost light is reckoned per train in the plan: an accessory frame could not evaluate it.
+  return scene.compensator == Compensator::None || scene.optics.lens_depth < 2;
 }
 
 namespace {
@@ -90,12 +92,13 @@ std::vector<unsigned char> figure_disc(const Scene& scene) {
   return lit;
 }
 
-// Unlit pixels within the cubic's reach (3 pixels) of the disc take the probes of the lit pixel
+// Unlit pixels within the cubic's reach (3 pixels) of the disc take the value of the lit pixel
 // nearest inward along their radius: a continuation of the figure, so that taps across the rim
-// read the figure's own values and not the black around it.
-void fill_rim(FigureResponse& r, double lit_radius) {
+// read the figure's own values and not the black around it. The pairs (unlit, lit).
+std::vector<std::pair<std::size_t, std::size_t>> rim_sources(const FigureResponse& r, double lit_radius) {
   const int W = r.width, H = r.height;
   const double half = 0.5 * std::min(W, H);
+  std::vector<std::pair<std::size_t, std::size_t>> rim;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * W + x;
@@ -110,11 +113,17 @@ void fill_rim(FigureResponse& r, double lit_radius) {
         if (sx < 0 || sy < 0 || sx >= W || sy >= H) continue;
         const std::size_t j = static_cast<std::size_t>(sy) * W + sx;
         if (!r.lit[j]) continue;
-        const std::size_t n = static_cast<std::size_t>(W) * H;
-        for (int k = 0; k < kProbeFloats; ++k) r.probes[k * n + i] = r.probes[k * n + j];
+        rim.emplace_back(i, j);
         break;
       }
     }
+  return rim;
+}
+
+void fill_rim(FigureResponse& r) {
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  for (const auto& [i, j] : r.rim)
+    for (int k = 0; k < kProbeFloats; ++k) r.probes[k * n + i] = r.probes[k * n + j];
 }
 
 }  // namespace
@@ -199,6 +208,19 @@ bool shared_probes(const Scene& scene, FigureResponse& r, const std::atomic<bool
     develop_image(*plan, xyz[k], false, img, cancel);
     store_probe(r, k, img.xyz);
   }
+  r.plan = plan;
+  r.level = std::make_shared<const SpectralLevel>(level);
+  return !(cancel && cancel->load());
+}
+
+// A figure's plan for its accessory frames where the probes did not come from one (one spectral
+// line, the exact plate model, more than 256 bands): compiled at the first probe's scene, fits
+// kept. None with ghost light (figure_response_applies). False when cancelled.
+bool keep_figure_plan(const Scene& grid, FigureResponse& r, const std::atomic<bool>* cancel) {
+  if (r.plan || grid.optics.lens_depth >= 2) return true;
+  r.plan = compile_evaluation_plan(probe_scene(grid, 0, r.wavelengths), cancel, true);
+  if (!r.plan) return false;
+  r.level = std::make_shared<const SpectralLevel>(make_spectral_level(*r.plan, r.wavelengths));
   return !(cancel && cancel->load());
 }
 
@@ -271,13 +293,18 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
     store_probe(r, k, ProgressiveRenderer::render(probe_scene(grid, k, r.wavelengths), threads).xyz);
     if (cancelled()) return std::nullopt;
   }
+  bool kept = false;
+  arena.execute([&] { kept = keep_figure_plan(grid, r, cancel); });
+  if (!kept || cancelled()) return std::nullopt;
+  if (r.plan && !r.plan->ghost_xyz().empty()) r.plan = nullptr, r.level = nullptr;
   r.lit = figure_disc(scene);
   bool light_outside = false;
   for (std::size_t p = 0; p < n && !light_outside; ++p)
     if (!r.lit[p])
       for (int k = 0; k < kProbeFloats; ++k) light_outside = light_outside || r.probes[k * n + p] != 0.0f;
   if (light_outside) r.outside = r.probes;
-  fill_rim(r, std::min(1.0, scene.condenser.na / scene.objective.na));
+  r.rim = rim_sources(r, std::min(1.0, scene.condenser.na / scene.objective.na));
+  fill_rim(r);
   r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -319,10 +346,11 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
   return grid;
 }
 
-// A flat view's units at the frame's settings, stage 0°: without an accessory the nine unit
-// probes combined with the frame's weights; with one, every unit evaluated in the frame's train
-// turned into the specimen's frame (the stage-0° canvas's crystals, the polars and slot at −θ).
-std::vector<glm::vec3> flat_units(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w) {
+// The plan's units at the frame's settings, stage 0°: a flat view without an accessory combines
+// its nine unit probes with the frame's weights; with one (a flat view or a figure), every unit is
+// evaluated in the frame's train turned into the specimen's frame (the stage-0° grid's crystals,
+// the polars and slot at −θ).
+std::vector<glm::vec3> frame_units(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w) {
   const EvaluationPlan& plan = *r.plan;
   const int units = static_cast<int>(plan.units().size());
   std::vector<glm::vec3> unit_xyz(units);
@@ -330,7 +358,7 @@ std::vector<glm::vec3> flat_units(const FigureResponse& r, const InstrumentSetti
   const auto store = [&](int u, const glm::dvec3& v) {
     unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
   };
-  if (in.compensator == Compensator::None) {
+  if (in.compensator == Compensator::None && r.flat) {
     for (int u = 0; u < units; ++u) {
       const float* p = &r.unit_probes[static_cast<std::size_t>(u) * kProbeFloats];
       glm::dvec3 v(0.0);
@@ -347,20 +375,25 @@ std::vector<glm::vec3> flat_units(const FigureResponse& r, const InstrumentSetti
   lab.compensator_position = in.compensator_position;
   const CompensatorPlate comp = make_compensator(in.compensator, in.compensator_position);
   SpectralLevel level = level_in_train(*r.level, lab, comp);
+  // The sums in the unturned train: turning moves the train's directions, not the phase χ.
+  const std::shared_ptr<const CompensatorSums> sums =
+      r.accessory_sums->get({static_cast<int>(in.compensator), in.compensator_position},
+                            [&] { return std::make_shared<const CompensatorSums>(compensator_sums(plan, level)); });
   for (TrainState& t : level.train) t = train_in_specimen_frame(t, in.stage_rad);
   const TrainState train = train_in_specimen_frame(make_train(lab, comp, 550.0), in.stage_rad);
-  tbb::parallel_for(tbb::blocked_range<int>(0, units, 64), [&](const tbb::blocked_range<int>& b) {
-    for (int u = b.begin(); u != b.end(); ++u) store(u, evaluate_unit_in_train(plan, level, train, u));
+  tbb::parallel_for(tbb::blocked_range<int>(0, units, 32), [&](const tbb::blocked_range<int>& b) {
+    for (int u = b.begin(); u != b.end(); ++u) store(u, evaluate_unit_from_sums(plan, level, train, *sums, u));
   });
   return unit_xyz;
 }
 
-// The flat view's canvas developed as its render would be (develop_image: each point the weighted
-// sum of its units) at the points the frame reads, in the layout contract_grid gives.
+// The grid developed from the plan's units as its render would be (develop_image: each point the
+// weighted sum of its units) at the points the frame reads, in the layout contract_grid gives; a
+// figure's rim then holds its lit neighbours' values, as its probes do.
 std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w,
                                 const std::vector<std::pair<int, int>>& spans) {
   const EvaluationPlan& plan = *r.plan;
-  const std::vector<glm::vec3> unit_xyz = flat_units(r, in, w);
+  const std::vector<glm::vec3> unit_xyz = frame_units(r, in, w);
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   std::vector<float> grid(4 * n);
   const std::vector<int>& offset = plan.pixel_offset();
@@ -376,6 +409,7 @@ std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSetting
         g[3] = 0.0f;
       }
   });
+  for (const auto& [i, j] : r.rim) std::copy_n(&grid[4 * j], 4, &grid[4 * i]);
   return grid;
 }
 
@@ -429,9 +463,10 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   // The view at these settings, stage 0°, where the frame reads it; then read turned by the stage.
   const std::vector<std::pair<int, int>> spans =
       read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)});
-  if (!r.flat && in.compensator != Compensator::None)
-    throw std::logic_error("compose_figure: an accessory in a figure's response (it is rendered per setting)");
-  const std::vector<float> grid = r.flat ? develop_grid(r, in, w, spans) : contract_grid(r, w, spans);
+  const bool from_units = r.flat || in.compensator != Compensator::None;
+  if (from_units && !r.plan)
+    throw std::logic_error("compose_figure: an accessory in a figure with ghost light (it is rendered per setting)");
+  const std::vector<float> grid = from_units ? develop_grid(r, in, w, spans) : contract_grid(r, w, spans);
   const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;

@@ -20,9 +20,17 @@
 // itself; grid points just outside it hold their nearest lit neighbour's value, so the cubic's
 // taps at the rim read no black.
 //
-// Where it does not hold: an accessory, whose retardance sits inside the band sum between the
-// specimen and the analyzer (a gypsum plate or wedge in the slot: figure_response_applies is
-// false and the figure is rendered afresh).
+// Where the probes do not hold: an accessory, whose retardance sits inside the band sum between
+// the specimen and the analyzer. A figure keeps the plan its probes came from (its modal fits kept,
+// one unit a back-focal-plane point), and a frame with the gypsum plate, the mica plate or the
+// quartz wedge evaluates every unit in the frame's train turned into the specimen's frame
+// (train_in_specimen_frame: polars and slot at −θ), develops the grid and reads it turned as
+// above: exact at every accessory and wedge position. The band sums do not depend on the polars,
+// the slot's angle or the stage (compensator_sums.h): the first frame with an accessory at a wedge
+// position makes them, one band loop a unit, and every later frame combines them with its
+// train's terms (make_modal_terms and 15 products a direction). The
+// physical lenses' ghost light (optics.lens_depth ≥ 2) is reckoned per train in the plan, so such
+// a figure with an accessory is rendered per setting (figure_response_applies is false).
 //
 // A flat orthoscopic view of a thin section (no relief, or an EBSD map; flat_response_applies) is the
 // same bilinear form per image point, and the same rotation argument holds (condenser and
@@ -43,9 +51,12 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
+#include "core/base/build_cache.h"
 #include "core/microscope/scene.h"
+#include "core/render/compensator_sums.h"
 #include "core/render/render_image.h"
 #include "core/render/spectral_level.h"
 #include "core/specimen/specimen_response.h"
@@ -56,7 +67,7 @@ namespace pmsim {
 inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
 
 // Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
-// conoscopic mode, no accessory in the slot.
+// conoscopic mode, and no accessory in the slot or no ghost light (optics.lens_depth < 2).
 bool figure_response_applies(const Scene& scene);
 // A flat view's canvas plan holds each canvas pixel's unit references (~16 B) and a frame develops
 // a 4-float grid (16 B), on a canvas of about twice the view's pixels: 1536² canvas pixels (a view
@@ -99,10 +110,19 @@ struct FigureResponse {
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
   // read nearest-neighbour (the same planes); empty when there is none.
   std::vector<float> outside;
-  // A flat view's canvas plan, its modal fits kept, and the spectral level of the probes (null for
-  // a figure): the units a frame develops the canvas from (the header).
+  // The plan the probes came from, its modal fits kept, and their spectral level: a flat view's
+  // canvas plan (its units are what every frame develops the canvas from), a figure's plan for
+  // frames with an accessory (null when the figure has ghost light: optics.lens_depth ≥ 2).
   std::shared_ptr<const EvaluationPlan> plan;
   std::shared_ptr<const SpectralLevel> level;
+  // The plan's compensator sums for the accessory (kind, wedge position) last composed: made on
+  // the first frame with it (one band loop a direction), read by every frame after (the header).
+  using AccessoryKey = std::pair<int, double>;
+  std::shared_ptr<BuildCache<AccessoryKey, CompensatorSums, Keep::Last>> accessory_sums =
+      std::make_shared<BuildCache<AccessoryKey, CompensatorSums, Keep::Last>>();
+  // A figure's unlit grid points within the cubic's reach of the disc, each with the lit point
+  // whose value it holds (fill_rim: probes at the build, a developed grid on an accessory frame).
+  std::vector<std::pair<std::size_t, std::size_t>> rim;
   // The spectral level the probes were rendered at, and the convergence of the figure's own
   // render at the scene's settings (what every composed image carries).
   int wavelengths = 0;
@@ -122,8 +142,8 @@ std::optional<FigureResponse> render_figure_response(const Scene& scene, int thr
 std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads = 0,
                                                    const std::atomic<bool>* cancel = nullptr);
 
-// The figure at `instrument` (a figure's compensator must be none; a flat view's may be any): XYZ
-// and linear sRGB.
+// The view at `instrument` (any accessory; a figure with ghost light, whose plan is null, none):
+// XYZ and linear sRGB.
 RenderImage compose_figure(const FigureResponse& response, const InstrumentSettings& instrument);
 
 }  // namespace pmsim

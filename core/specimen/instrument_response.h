@@ -5,14 +5,15 @@
 //
 //   Traced — a traced specimen (is_traced_specimen): its Mueller response per grid point
 //            (specimen_response.h), rendered over the field or over the disc the stage sweeps.
-//   Figure — a conoscopic figure with no accessory (figure_response_applies): its nine probes
-//            (figure_response.h).
+//   Figure — a conoscopic figure (figure_response_applies): its nine probes, and its plan for
+//            frames with an accessory (figure_response.h).
 //   Flat   — a thin section's flat orthoscopic view (flat_response_applies: optics.relief off, or
 //            an EBSD map the slab cannot trace): nine probes over a canvas that holds the view at
 //            every stage angle, and the canvas's plan for frames with an accessory
 //            (figure_response.h).
-//   None   — every other view (a plate, a wedge, a figure with an accessory in the slot, the
-//            parallel-light spot): the progressive renderer renders each setting afresh.
+//   None   — every other view (a plate, a wedge, a figure with ghost light and an accessory in
+//            the slot, the parallel-light spot): the progressive renderer renders each setting
+//            afresh.
 #include <atomic>
 #include <functional>
 #include <memory>
