@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
     if (apply_settings) {
       const int side = opt.size > 0 ? opt.size : 512;
       std::cout << pmsim::response_apply_note(side, 15, std::cerr) << "\n"
-                << pmsim::flat_apply_note(side, 15, std::cerr) << "\n";
+                << pmsim::flat_apply_note(side, 15, std::cerr) << "\n"
+                << pmsim::figure_apply_note(side, 15, std::cerr) << "\n";
       return 0;
     }
     pmsim::BenchReport rep;

@@ -8,6 +8,8 @@
 
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
 #include "core/bench/image_error.h"
+#include "core/io/scene_file.h"
+#include "core/microscope/modal_fit.h"
 #include "core/render/progressive_renderer.h"
 #include "core/specimen/figure_response.h"
 #include "core/specimen/forward_response.h"
@@ -82,6 +84,46 @@ std::string response_apply_note(int compose_size, int frames, std::ostream& log)
   return buf;
 }
 
+namespace {
+
+struct AccessoryCase {
+  Compensator accessory;
+  double position;
+  double ms = 0.0, first_ms = 0.0, de = 0.0, fresh_ms = 0.0;
+};
+
+// A drag of 1° a frame from 30° composed from `r`, without an accessory, with the gypsum plate and
+// with the quartz wedge at 0.4: the median frame, and the last frame against a fresh render (and
+// that render's time: what the frame cost when the view was rendered per setting).
+std::vector<AccessoryCase> drag_with_accessories(const FigureResponse& r, const Scene& s, int frames) {
+  std::vector<AccessoryCase> cases = {{Compensator::None, 0.0}, {Compensator::Gypsum, 0.0}, {Compensator::QuartzWedge, 0.4}};
+  const glm::dvec3 white = illuminant_white_xyz(s.illuminant);
+  for (AccessoryCase& c : cases) {
+    std::vector<double> t;
+    Scene f = s;
+    f.compensator = c.accessory;
+    f.compensator_position = c.position;
+    f.render.wavelengths = r.wavelengths;
+    RenderImage img;
+    for (int i = 0; i < frames; ++i) {
+      f.stage_deg = 30.0 + i;
+      const double t1 = now_ms();
+      img = compose_figure(r, instrument_settings(f));
+      t.push_back(now_ms() - t1);
+    }
+    c.first_ms = t.front();  // with an accessory: its band sums made (compensator_sums.h)
+    std::sort(t.begin(), t.end());
+    c.ms = t[t.size() / 2];
+    const double t2 = now_ms();
+    const RenderImage fresh = ProgressiveRenderer::render(f);
+    c.fresh_ms = now_ms() - t2;
+    c.de = image_error_de2000(img.xyz, fresh.xyz, {}, white).mean_de2000;
+  }
+  return cases;
+}
+
+}  // namespace
+
 std::string flat_apply_note(int size, int frames, std::ostream& log) {
   Scene s = granite_crossed(size);
   s.optics.relief = false;
@@ -91,37 +133,46 @@ std::string flat_apply_note(int size, int frames, std::ostream& log) {
   const double response_ms = now_ms() - t0;
   if (!r || !r->plan) throw std::runtime_error("flat_apply_note: the flat view's response was not rendered");
   log << "done\n";
-  struct Case {
-    Compensator accessory;
-    double position;
-    double ms = 0.0, de = 0.0;
-  };
-  Case cases[] = {{Compensator::None, 0.0}, {Compensator::Gypsum, 0.0}, {Compensator::QuartzWedge, 0.4}};
-  const glm::dvec3 white = illuminant_white_xyz(s.illuminant);
-  for (Case& c : cases) {
-    std::vector<double> t;
-    Scene f = s;
-    f.compensator = c.accessory;
-    f.compensator_position = c.position;
-    f.render.wavelengths = r->wavelengths;
-    RenderImage img;
-    for (int i = 0; i < frames; ++i) {  // a drag of 1° a frame from 30°
-      f.stage_deg = 30.0 + i;
-      const double t1 = now_ms();
-      img = compose_figure(*r, instrument_settings(f));
-      t.push_back(now_ms() - t1);
-    }
-    std::sort(t.begin(), t.end());
-    c.ms = t[t.size() / 2];
-    c.de = image_error_de2000(img.xyz, ProgressiveRenderer::render(f).xyz, {}, white).mean_de2000;
-  }
+  const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "applying the settings to the flat %d² granite view (relief off, %d×%d canvas, %zu units; response "
                 "%.0f ms): %.2f ms, %.2f ms with the gypsum plate, %.2f ms with the quartz wedge at 0.4 (median of %d "
                 "frames at stage 30°+; the last frame against a fresh render: mean ΔE00 %.2f / %.2f / %.2f)",
-                size, r->width, r->height, r->plan->units().size(), response_ms, cases[0].ms, cases[1].ms, cases[2].ms,
-                frames, cases[0].de, cases[1].de, cases[2].de);
+                size, r->width, r->height, r->plan->units().size(), response_ms, c[0].ms, c[1].ms, c[2].ms, frames,
+                c[0].de, c[1].de, c[2].de);
+  return buf;
+}
+
+std::string figure_apply_note(int size, int frames, std::ostream& log) {
+  // As assets/scenes/biaxial_acute_bisectrix.json: a biaxial plate ⟂ the acute bisectrix, 100 µm.
+  const nlohmann::json j = {
+      {"type", "microscope"},
+      {"mode", "cono"},
+      {"objective", {{"magnification", 50}, {"na", 0.85}}},
+      {"condenser", {{"na", 0.9}}},
+      {"sample", nlohmann::json::parse(R"({"type": "plate", "crystal": {"nalpha": 1.60, "nbeta": 1.61,
+        "ngamma": 1.64}, "thickness_um": 100, "x_axis": [1, 0, 0], "z_axis": [0, 0, 1]})")},
+      {"render", {{"width", size}, {"height", size}}}};
+  const Scene s = scene_from_json(j, "figure_apply_note");
+  log << "apply settings: the " << size << "² biaxial figure's response… " << std::flush;
+  const double t0 = now_ms();
+  const std::optional<FigureResponse> r = render_figure_response(s);
+  const double response_ms = now_ms() - t0;
+  if (!r || !r->plan) throw std::runtime_error("figure_apply_note: the figure's response was not rendered");
+  // What the accessory frames keep beside the probes: the plan's fits and the sums a direction.
+  const double fits_mb = r->plan->modal_fits().size() * sizeof(ModalFit) / 1048576.0;
+  const double sums_mb = r->plan->units().size() * r->plan->dirs_per_unit() * 27 * sizeof(float) / 1048576.0;
+  log << "done\n";
+  const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
+  char buf[700];
+  std::snprintf(buf, sizeof buf,
+                "applying the settings to the %d² biaxial figure (%zu units; response %.0f ms; fits %.0f MB, sums %.0f MB): %.2f ms, "
+                "%.2f ms with the gypsum plate, %.2f ms with the quartz wedge at 0.4 (median of %d frames at stage "
+                "30°+; the first frame with each accessory, its band sums made: %.0f / %.0f ms; the last frame against "
+                "a fresh render: mean ΔE00 %.2f / %.2f / %.2f; that render %.0f / %.0f / %.0f ms)",
+                size, r->plan->units().size(), response_ms, fits_mb, sums_mb, c[0].ms, c[1].ms, c[2].ms, frames,
+                c[1].first_ms, c[2].first_ms, c[0].de, c[1].de, c[2].de, c[0].fresh_ms, c[1].fresh_ms, c[2].fresh_ms);
   return buf;
 }
 

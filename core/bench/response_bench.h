@@ -30,4 +30,10 @@ std::string response_apply_note(int compose_size, int frames, std::ostream& log)
 // of `frames` wall times each, and the last frame's mean ΔE00 against a fresh render; one line.
 std::string flat_apply_note(int size, int frames, std::ostream& log);
 
+// The same for a conoscopic figure (a biaxial plate ⟂ the acute bisectrix at 50×/0.85): the
+// figure's response (its probes and its plan), then the drag without an accessory and with the
+// gypsum plate and the quartz wedge, each last frame against a fresh render and that render's time
+// (what an accessory frame cost before: the figure was rendered per setting).
+std::string figure_apply_note(int size, int frames, std::ostream& log);
+
 }  // namespace pmsim
