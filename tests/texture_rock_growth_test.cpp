@@ -669,4 +669,34 @@ TEST(RockRecipe, PorphyroblastInAGranoblasticRockIsRefused) {
   std::filesystem::remove(path);
 }
 
+// An alteration's orientation is "random" or "host"; anything else is refused naming the file,
+// the key and the value.
+TEST(RockRecipe, AnAlterationsOrientationIsRandomOrHost) {
+  nlohmann::json j;
+  {
+    std::ifstream f(rock_recipe_path("schist"));
+    j = nlohmann::json::parse(f);
+  }
+  nlohmann::json* biotite = nullptr;
+  for (auto& ph : j["phases"])
+    if (ph["mineral"] == "biotite") biotite = &ph;
+  ASSERT_TRUE(biotite && biotite->contains("alteration"));
+  (*biotite)["alteration"]["orientation"] = "sideways";
+  const std::string path = (std::filesystem::temp_directory_path() / "pmsim_alteration_orientation.json").string();
+  {
+    std::ofstream f(path);
+    f << j.dump(2);
+  }
+  try {
+    (void)read_rock_recipe(path);
+    ADD_FAILURE() << "an alteration orientation \"sideways\" was accepted";
+  } catch (const pmsim::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(path), std::string::npos) << m;
+    EXPECT_NE(m.find("orientation"), std::string::npos) << m;
+    EXPECT_NE(m.find("sideways"), std::string::npos) << m;
+  }
+  std::filesystem::remove(path);
+}
+
 }  // namespace pmsim

@@ -460,8 +460,9 @@ nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, std::uint6
   if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
   if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
   if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
-    // The secondary mineral in a random orientation of its own (it grew in the cracks).
-    const auto e = uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
+    // The secondary mineral in a random orientation of its own (it grew in the cracks), or in the
+    // host's (a topotactic replacement).
+    const auto e = ph.alteration->host_orientation ? c.euler_deg : uniform_euler_deg(splitmix64(seed ^ 0xA17E5ull), written);
     j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
   }
   if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written, rng);

@@ -113,6 +113,9 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     known_mineral(*a, "mineral", ar.mineral);
     ar.vein_mm = a->require<double>("vein_mm", Range::open_closed(0, 1));
     ar.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
+    const std::string orientation = a->get_or<std::string>("orientation", "random");
+    if (orientation != "random" && orientation != "host") a->fail("orientation", "expected \"random\" or \"host\"");
+    ar.host_orientation = orientation == "host";
     p.alteration = ar;
   }
   if (const auto a = pr.optional_object("inclusions")) p.inclusions = read_inclusions(*a);

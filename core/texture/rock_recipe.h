@@ -19,7 +19,8 @@
 //                "fabric": {"align": "elongation|plate_normal", "direction": [1, 0, 0],
 //                           "spread_deg": 15},  (optional: a shape-preferred orientation)
 //                "undulose": {"subgrain_mm": 0.05, "step_deg": 1.5},  (optional: bent, polygonized)
-//                "alteration": {"mineral": "antigorite", "vein_mm": 0.02, "fraction": 1},
+//                "alteration": {"mineral": "antigorite", "vein_mm": 0.02, "fraction": 1,
+//                               "orientation": "random|host"},
 //                                            (optional: the cracks filled with a secondary mineral)
 //                "inclusions": {"mineral": "quartz", "size_mm": 0.04, "aspect": 2.5, "spacing_mm": 0.1,
 //                               "trail_spacing_mm": 0.08, "fraction": 0.6, "within": 0.85,
@@ -80,6 +81,11 @@ struct AlterationRecipe {
   std::string mineral;
   double vein_mm = 0.02;
   double fraction = 1.0;
+  // "orientation": "random" (default: the secondary mineral grew in the cracks, serpentine in
+  // olivine's fractures) or "host": it replaced the host topotactically, its lattice in the host's
+  // orientation (chlorite after biotite, basal layers parallel: Veblen & Ferry 1983, Am. Mineral.
+  // 68, 1160–1168).
+  bool host_orientation = false;
 };
 
 // Inclusions the phase's crystals grew round (section_map.h SectionGrain::InclusionSet): small
