@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/bench/bench_strategy.h"  // process_cpu_ms
 #include "core/bench/image_error.h"
+#include "core/base/asset_locator.h"
 #include "core/io/scene_file.h"
 #include "core/microscope/modal_fit.h"
 #include "core/render/progressive_renderer.h"
@@ -122,17 +125,24 @@ std::vector<AccessoryCase> drag_with_accessories(const FigureResponse& r, const 
   return cases;
 }
 
+// The view's response (probes and plan), timed; `what` names it in the log and in a failure.
+std::pair<FigureResponse, double> timed_response(const Scene& s, const std::string& what, std::ostream& log) {
+  log << "apply settings: " << what << "'s response… " << std::flush;
+  const double t0 = now_ms();
+  std::optional<FigureResponse> r = render_figure_response(s);
+  const double ms = now_ms() - t0;
+  if (!r || !r->plan) throw std::runtime_error("apply settings: " + what + "'s response was not rendered");
+  log << "done\n";
+  return {std::move(*r), ms};
+}
+
 }  // namespace
 
 std::string flat_apply_note(int size, int frames, std::ostream& log) {
   Scene s = granite_crossed(size);
   s.optics.relief = false;
-  log << "apply settings: the flat " << size << "² view's response… " << std::flush;
-  const double t0 = now_ms();
-  const std::optional<FigureResponse> r = render_figure_response(s);
-  const double response_ms = now_ms() - t0;
-  if (!r || !r->plan) throw std::runtime_error("flat_apply_note: the flat view's response was not rendered");
-  log << "done\n";
+  const auto [response, response_ms] = timed_response(s, "the flat " + std::to_string(size) + "² view", log);
+  const FigureResponse* r = &response;
   const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
   char buf[400];
   std::snprintf(buf, sizeof buf,
@@ -145,25 +155,13 @@ std::string flat_apply_note(int size, int frames, std::ostream& log) {
 }
 
 std::string figure_apply_note(int size, int frames, std::ostream& log) {
-  // As assets/scenes/biaxial_acute_bisectrix.json: a biaxial plate ⟂ the acute bisectrix, 100 µm.
-  const nlohmann::json j = {
-      {"type", "microscope"},
-      {"mode", "cono"},
-      {"objective", {{"magnification", 50}, {"na", 0.85}}},
-      {"condenser", {{"na", 0.9}}},
-      {"sample", nlohmann::json::parse(R"({"type": "plate", "crystal": {"nalpha": 1.60, "nbeta": 1.61,
-        "ngamma": 1.64}, "thickness_um": 100, "x_axis": [1, 0, 0], "z_axis": [0, 0, 1]})")},
-      {"render", {{"width", size}, {"height", size}}}};
-  const Scene s = scene_from_json(j, "figure_apply_note");
-  log << "apply settings: the " << size << "² biaxial figure's response… " << std::flush;
-  const double t0 = now_ms();
-  const std::optional<FigureResponse> r = render_figure_response(s);
-  const double response_ms = now_ms() - t0;
-  if (!r || !r->plan) throw std::runtime_error("figure_apply_note: the figure's response was not rendered");
+  Scene s = load_scene_file((std::filesystem::path(asset_dir()) / "scenes" / "biaxial_acute_bisectrix.json").string());
+  s.render.width = s.render.height = size;
+  const auto [response, response_ms] = timed_response(s, "the " + std::to_string(size) + "² biaxial figure", log);
+  const FigureResponse* r = &response;
   // What the accessory frames keep beside the probes: the plan's fits and the sums a direction.
   const double fits_mb = r->plan->modal_fits().size() * sizeof(ModalFit) / 1048576.0;
   const double sums_mb = r->plan->units().size() * r->plan->dirs_per_unit() * 27 * sizeof(float) / 1048576.0;
-  log << "done\n";
   const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
   char buf[700];
   std::snprintf(buf, sizeof buf,
