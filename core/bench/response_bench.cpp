@@ -114,7 +114,7 @@ std::vector<AccessoryCase> drag_with_accessories(const FigureResponse& r, const 
       img = compose_figure(r, instrument_settings(f));
       t.push_back(now_ms() - t1);
     }
-    c.first_ms = t.front();  // with an accessory: its band sums made (compensator_sums.h)
+    c.first_ms = t.front();  // with an accessory: its sums (and a figure's planes) made
     std::sort(t.begin(), t.end());
     c.ms = t[t.size() / 2];
     const double t2 = now_ms();
@@ -159,17 +159,18 @@ std::string figure_apply_note(int size, int frames, std::ostream& log) {
   s.render.width = s.render.height = size;
   const auto [response, response_ms] = timed_response(s, "the " + std::to_string(size) + "² biaxial figure", log);
   const FigureResponse* r = &response;
-  // What the accessory frames keep beside the probes: the plan's fits and the sums a direction.
+  // What the accessory frames keep beside the probes: the plan's fits, and 27 planes a grid point
+  // (the band sums a direction, 27 floats, only while the planes are made).
   const double fits_mb = r->plan->modal_fits().size() * sizeof(ModalFit) / 1048576.0;
-  const double sums_mb = r->plan->units().size() * r->plan->dirs_per_unit() * 27 * sizeof(float) / 1048576.0;
+  const double planes_mb = r->probes.size() * sizeof(float) / 1048576.0;
   const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
   char buf[700];
   std::snprintf(buf, sizeof buf,
-                "applying the settings to the %d² biaxial figure (%zu units; response %.0f ms; fits %.0f MB, sums %.0f MB): %.2f ms, "
+                "applying the settings to the %d² biaxial figure (%zu units; response %.0f ms; fits %.0f MB, accessory planes %.0f MB): %.2f ms, "
                 "%.2f ms with the gypsum plate, %.2f ms with the quartz wedge at 0.4 (median of %d frames at stage "
-                "30°+; the first frame with each accessory, its band sums made: %.0f / %.0f ms; the last frame against "
+                "30°+; the first frame with each accessory, its sums and planes made: %.0f / %.0f ms; the last frame against "
                 "a fresh render: mean ΔE00 %.2f / %.2f / %.2f; that render %.0f / %.0f / %.0f ms)",
-                size, r->plan->units().size(), response_ms, fits_mb, sums_mb, c[0].ms, c[1].ms, c[2].ms, frames,
+                size, r->plan->units().size(), response_ms, fits_mb, planes_mb, c[0].ms, c[1].ms, c[2].ms, frames,
                 c[1].first_ms, c[2].first_ms, c[0].de, c[1].de, c[2].de, c[0].fresh_ms, c[1].fresh_ms, c[2].fresh_ms);
   return buf;
 }

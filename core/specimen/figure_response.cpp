@@ -74,10 +74,25 @@ namespace {
 
 constexpr int kProbeFloats = 27;  // 9 probes × XYZ: planes of FigureResponse::probes
 
-// Weights c of p(ψ) = Σ_j c_j p(kFigureProbeDeg[j]), p(ψ) = (1, cos 2ψ, sin 2ψ) (the header).
+// Weights d of (1, x, y) = Σ_i d_i p(kFigureProbeDeg[i]), p(ψ) = (1, cos 2ψ, sin 2ψ) (the header).
+std::array<double, 3> analyzer_weights(double x, double y) { return {0.5 * (1.0 - y + x), y, 0.5 * (1.0 - y - x)}; }
+
+// Weights c of p(ψ) = Σ_j c_j p(kFigureProbeDeg[j]).
 std::array<double, 3> probe_weights(double angle_rad) {
-  const double c = std::cos(2.0 * angle_rad), s = std::sin(2.0 * angle_rad);
-  return {0.5 * (1.0 - s + c), s, 0.5 * (1.0 - s - c)};
+  return analyzer_weights(std::cos(2.0 * angle_rad), std::sin(2.0 * angle_rad));
+}
+
+// The analyzer at α seen through an accessory whose eigen-axis is at β, both in the specimen's
+// frame: u the analyzer side of the accessory's C0, (v1, v2) of C1 (against cos δ) and w3 of C2
+// (against sin δ) (the header).
+struct AccessoryWeights {
+  double u1, u2, v1, v2, w3;
+};
+AccessoryWeights accessory_weights(double alpha_rad, double beta_rad) {
+  const double a1 = std::cos(2.0 * alpha_rad), a2 = std::sin(2.0 * alpha_rad);
+  const double c = std::cos(2.0 * beta_rad), s = std::sin(2.0 * beta_rad);
+  return {a1 * c * c + a2 * c * s, a1 * c * s + a2 * s * s, a1 * s * s - a2 * c * s, a2 * c * c - a1 * c * s,
+          a2 * c - a1 * s};
 }
 
 // The disc the figure lights: bfp_lit at each pixel centre, as the conoscopic pixel view's.
@@ -316,7 +331,8 @@ namespace {
 // the layout cubic::cubic4 reads). Per block, each channel is nine multiply-adds over contiguous
 // planes (they vectorise), then interleaved.
 std::vector<float> contract_grid(const FigureResponse& r, const std::array<float, 9>& w,
-                                 const std::vector<std::pair<int, int>>& spans) {
+                                 const std::vector<std::pair<int, int>>& spans, const std::vector<float>* extra = nullptr,
+                                 const std::array<float, 9>& we = {}) {
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   constexpr int kBlock = 2048;
   std::vector<float> grid(4 * n);
@@ -333,6 +349,11 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
             const float wk = w[k];
             for (int p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
           }
+          for (int k = 0; extra && k < 9; ++k) {  // an accessory's planes (FigureResponse::Accessory)
+            const float* plane = &(*extra)[(3 * k + c) * n + begin];
+            const float wk = we[k];
+            for (int p = 0; p < m; ++p) sum[c][p] += wk * plane[p];
+          }
         }
         for (int p = 0; p < m; ++p) {
           float* g = &grid[4 * (begin + p)];
@@ -346,50 +367,134 @@ std::vector<float> contract_grid(const FigureResponse& r, const std::array<float
   return grid;
 }
 
-// The plan's units at the frame's settings, stage 0°: a flat view without an accessory combines
-// its nine unit probes with the frame's weights; with one (a flat view or a figure), every unit is
-// evaluated in the frame's train turned into the specimen's frame (the stage-0° grid's crystals,
-// the polars and slot at −θ).
-std::vector<glm::vec3> frame_units(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w) {
+// The plan's units in the train of `lab` (the plan's scene with other polars and accessory) turned
+// into the specimen's frame by θ, from the accessory's sums, developed as the renderer's units are.
+std::vector<glm::vec3> units_in_train(const FigureResponse& r, const Scene& lab, const CompensatorSums& sums,
+                                      double theta) {
   const EvaluationPlan& plan = *r.plan;
   const int units = static_cast<int>(plan.units().size());
-  std::vector<glm::vec3> unit_xyz(units);
-  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
-  const auto store = [&](int u, const glm::dvec3& v) {
-    unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
-  };
-  if (in.compensator == Compensator::None && r.flat) {
-    for (int u = 0; u < units; ++u) {
-      const float* p = &r.unit_probes[static_cast<std::size_t>(u) * kProbeFloats];
-      glm::dvec3 v(0.0);
-      for (int k = 0; k < 9; ++k) v += static_cast<double>(w[k]) * glm::dvec3(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
-      store(u, v);
-    }
-    return unit_xyz;
-  }
-  Scene lab = plan.scene();
-  lab.polarizer_deg = degrees(in.polarizer_rad);
-  lab.analyzer_in = in.analyzer_in;
-  lab.analyzer_deg = degrees(in.analyzer_rad);
-  lab.compensator = in.compensator;
-  lab.compensator_position = in.compensator_position;
-  const CompensatorPlate comp = make_compensator(in.compensator, in.compensator_position);
+  const CompensatorPlate comp = make_compensator(lab.compensator, lab.compensator_position);
   SpectralLevel level = level_in_train(*r.level, lab, comp);
-  // The sums in the unturned train: turning moves the train's directions, not the phase χ.
-  const std::shared_ptr<const CompensatorSums> sums =
-      r.accessory_sums->get({static_cast<int>(in.compensator), in.compensator_position},
-                            [&] { return std::make_shared<const CompensatorSums>(compensator_sums(plan, level)); });
-  for (TrainState& t : level.train) t = train_in_specimen_frame(t, in.stage_rad);
-  const TrainState train = train_in_specimen_frame(make_train(lab, comp, 550.0), in.stage_rad);
+  for (TrainState& t : level.train) t = train_in_specimen_frame(t, theta);
+  const TrainState train = train_in_specimen_frame(make_train(lab, comp, 550.0), theta);
+  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
+  std::vector<glm::vec3> unit_xyz(units);
   tbb::parallel_for(tbb::blocked_range<int>(0, units, 32), [&](const tbb::blocked_range<int>& b) {
-    for (int u = b.begin(); u != b.end(); ++u) store(u, evaluate_unit_from_sums(plan, level, train, *sums, u));
+    for (int u = b.begin(); u != b.end(); ++u) {
+      const glm::dvec3 v = evaluate_unit_from_sums(plan, level, train, sums, u);
+      unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
+    }
   });
   return unit_xyz;
 }
 
-// The grid developed from the plan's units as its render would be (develop_image: each point the
-// weighted sum of its units) at the points the frame reads, in the layout contract_grid gives; a
-// figure's rim then holds its lit neighbours' values, as its probes do.
+// The plan's scene with the frame's accessory in the slot.
+Scene in_slot(Scene s, const InstrumentSettings& in) {
+  s.compensator = in.compensator;
+  s.compensator_position = in.compensator_position;
+  return s;
+}
+
+// The angle of the accessory's eigen-axis (its slow direction) in the lab.
+double slot_axis_rad(const Scene& lab) {
+  const TrainState t = make_train(lab, make_compensator(lab.compensator, lab.compensator_position), 550.0);
+  return std::atan2(t.comp_dir[1].y, t.comp_dir[1].x);
+}
+
+// A figure's accessory planes (the header): per polarizer probe j, the units evaluated in three
+// accessory trains — eigen-axis and analyzer at (β, α) = (0°, 45°), (90°, 45°), (45°, 0°) in the
+// specimen's frame, each the lab train turned by θ = β_lab − β — developed, less the probes' part
+// ½[X0 + u1·X1 + u2·X2], leave v1·Y1 + v2·Y2 + w3·Z3; the three configurations' (v1, v2, w3),
+// (0, 1, 1), (0, 1, −1) and (1, 0, −1), are independent (det −2), so Y1, Y2, Z3 follow.
+std::vector<float> figure_accessory_planes(const FigureResponse& r, const Scene& lab, const CompensatorSums& sums) {
+  constexpr double kConfigDeg[3][2] = {{0.0, 45.0}, {90.0, 45.0}, {45.0, 0.0}};  // β, α
+  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
+  const double beta_lab = slot_axis_rad(lab);
+  glm::dmat3 coeff;  // rows k: (v1, v2, w3) of configuration k (glm: coeff[column][row])
+  std::array<std::array<double, 3>, 3> d{};  // the configurations' analyzer weights on the probes
+  for (int k = 0; k < 3; ++k) {
+    const AccessoryWeights a = accessory_weights(radians(kConfigDeg[k][1]), radians(kConfigDeg[k][0]));
+    coeff[0][k] = a.v1;
+    coeff[1][k] = a.v2;
+    coeff[2][k] = a.w3;
+    d[k] = analyzer_weights(a.u1, a.u2);
+  }
+  const glm::dmat3 solve = glm::inverse(coeff);
+  std::vector<float> planes(27 * n, 0.0f);
+  std::vector<float> residual[3];
+  RenderImage img;
+  for (int j = 0; j < 3; ++j) {
+    for (int k = 0; k < 3; ++k) {
+      const double theta = beta_lab - radians(kConfigDeg[k][0]);
+      Scene s = lab;
+      s.analyzer_in = true;
+      s.polarizer_deg = kFigureProbeDeg[j] + degrees(theta);
+      s.analyzer_deg = kConfigDeg[k][1] + degrees(theta);
+      const std::vector<glm::vec3> units = units_in_train(r, s, sums, theta);
+      develop_image(*r.plan, std::vector<glm::dvec3>(units.begin(), units.end()), false, img);
+      residual[k] = img.xyz;
+      for (std::size_t p = 0; p < n; ++p)
+        for (int c = 0; c < 3; ++c) {
+          double x = 0.0;
+          for (int i = 0; i < 3; ++i) x += d[k][i] * r.probes[(3 * (3 * i + j) + c) * n + p];
+          residual[k][3 * p + c] -= static_cast<float>(x);
+        }
+    }
+    for (std::size_t p = 0; p < n; ++p)
+      for (int c = 0; c < 3; ++c) {
+        const glm::dvec3 ymz = solve * glm::dvec3(residual[0][3 * p + c], residual[1][3 * p + c], residual[2][3 * p + c]);
+        for (int m = 0; m < 3; ++m) planes[(3 * (3 * m + j) + c) * n + p] = static_cast<float>(ymz[m]);
+      }
+  }
+  for (const auto& [i, q] : r.rim)
+    for (int k = 0; k < kProbeFloats; ++k) planes[k * n + i] = planes[k * n + q];
+  return planes;
+}
+
+// The accessory state a frame reads (FigureResponse::accessory): the sums, and a figure's planes.
+std::shared_ptr<const FigureResponse::Accessory> accessory_of(const FigureResponse& r, const InstrumentSettings& in) {
+  return r.accessory->get({static_cast<int>(in.compensator), in.compensator_position}, [&] {
+    const Scene lab = in_slot(r.plan->scene(), in);
+    const CompensatorPlate comp = make_compensator(lab.compensator, lab.compensator_position);
+    auto acc = std::make_shared<FigureResponse::Accessory>();
+    // The sums in the unturned train: turning moves the train's directions, not the phase χ.
+    acc->sums = compensator_sums(*r.plan, level_in_train(*r.level, lab, comp));
+    if (!r.flat) {
+      acc->planes = figure_accessory_planes(r, lab, acc->sums);
+      acc->sums = CompensatorSums{};  // the planes serve every frame
+    }
+    return std::shared_ptr<const FigureResponse::Accessory>(std::move(acc));
+  });
+}
+
+// A flat view's units at the frame's settings, stage 0°: without an accessory its nine unit probes
+// combined with the frame's weights; with one, every unit evaluated in the frame's train turned
+// into the specimen's frame (the stage-0° canvas's crystals, the polars and slot at −θ) from the
+// accessory's sums.
+std::vector<glm::vec3> frame_units(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w) {
+  const EvaluationPlan& plan = *r.plan;
+  if (in.compensator != Compensator::None) {
+    Scene lab = in_slot(plan.scene(), in);
+    lab.polarizer_deg = degrees(in.polarizer_rad);
+    lab.analyzer_in = in.analyzer_in;
+    lab.analyzer_deg = degrees(in.analyzer_rad);
+    return units_in_train(r, lab, accessory_of(r, in)->sums, in.stage_rad);
+  }
+  const int units = static_cast<int>(plan.units().size());
+  const glm::dvec3 white = illuminant_white_xyz(plan.scene().illuminant);
+  std::vector<glm::vec3> unit_xyz(units);
+  for (int u = 0; u < units; ++u) {
+    const float* p = &r.unit_probes[static_cast<std::size_t>(u) * kProbeFloats];
+    glm::dvec3 v(0.0);
+    for (int k = 0; k < 9; ++k) v += static_cast<double>(w[k]) * glm::dvec3(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+    unit_xyz[u] = glm::vec3(r.monochromatic ? white * v.y : v);  // as develop_image
+  }
+  return unit_xyz;
+}
+
+// A flat view's canvas developed from the plan's units as its render would be (develop_image: each
+// point the weighted sum of its units) at the points the frame reads, in the layout contract_grid
+// gives.
 std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w,
                                 const std::vector<std::pair<int, int>>& spans) {
   const EvaluationPlan& plan = *r.plan;
@@ -409,7 +514,6 @@ std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSetting
         g[3] = 0.0f;
       }
   });
-  for (const auto& [i, j] : r.rim) std::copy_n(&grid[4 * j], 4, &grid[4 * i]);
   return grid;
 }
 
@@ -463,10 +567,31 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
   // The view at these settings, stage 0°, where the frame reads it; then read turned by the stage.
   const std::vector<std::pair<int, int>> spans =
       read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)});
-  const bool from_units = r.flat || in.compensator != Compensator::None;
-  if (from_units && !r.plan)
+  const bool accessory = in.compensator != Compensator::None;
+  if ((r.flat || accessory) && !r.plan)
     throw std::logic_error("compose_figure: an accessory in a figure with ghost light (it is rendered per setting)");
-  const std::vector<float> grid = from_units ? develop_grid(r, in, w, spans) : contract_grid(r, w, spans);
+  std::vector<float> grid;
+  if (r.flat) {
+    grid = develop_grid(r, in, w, spans);
+  } else if (accessory) {
+    // The analyzer through the accessory (the header); with the analyzer out the accessory
+    // changes nothing (a retarder before an intensity).
+    const std::shared_ptr<const FigureResponse::Accessory> acc = accessory_of(r, in);
+    std::array<float, 9> wa = w, we{};
+    if (in.analyzer_in) {
+      const AccessoryWeights a =
+          accessory_weights(in.analyzer_rad - theta, slot_axis_rad(in_slot(r.plan->scene(), in)) - theta);
+      const std::array<double, 3> du = analyzer_weights(a.u1, a.u2), v = {a.v1, a.v2, a.w3};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          wa[3 * i + j] = static_cast<float>(du[i] * c[j]);
+          we[3 * i + j] = static_cast<float>(v[i] * c[j]);
+        }
+    }
+    grid = contract_grid(r, wa, spans, &acc->planes, we);
+  } else {
+    grid = contract_grid(r, w, spans);
+  }
   const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
   RenderImage img = r.progress;
   img.width = W;

@@ -27,8 +27,19 @@
 // (train_in_specimen_frame: polars and slot at −θ), develops the grid and reads it turned as
 // above: exact at every accessory and wedge position. The band sums do not depend on the polars,
 // the slot's angle or the stage (compensator_sums.h): the first frame with an accessory at a wedge
-// position makes them, one band loop a unit, and every later frame combines them with its
-// train's terms (make_modal_terms and 15 products a direction). The
+// position makes them, one band loop a unit. A flat view's frames then combine them with their
+// train's terms (make_modal_terms and 15 products a direction). A figure's first frame goes on to
+// planes, as its probes: a retarder with an eigen-axis at β has the Mueller matrix
+// C0(β) + cos δ·C1(β) + sin δ·C2(β) (docs/physics.md §3), so with the analyzer at α, in the
+// specimen's frame,
+//   XYZ = ½[X0 + u1·X1 + u2·X2] + v1·Y1 + v2·Y2 + w3·Z3,
+//   u1 = a1c² + a2cs, u2 = a1cs + a2s², v1 = a1s² − a2cs, v2 = a2c² − a1cs, w3 = a2c − a1s,
+// (a1, a2) = (cos 2α, sin 2α), (c, s) = (cos 2β, sin 2β), each term per polarizer probe: X from the
+// nine probes (the analyzer's u in place of its a), and Y1, Y2, Z3 — the band sums of cos δ·Q,
+// cos δ·U and sin δ·V of the specimen's output, halved — from the units evaluated in three
+// accessory trains per polarizer probe, (β, α) = (0°, 45°), (90°, 45°), (45°, 0°), less their X
+// part. A frame then contracts 18 planes a channel (the sign of C2, a convention, cancels: the
+// same formulas make Z3 and read it). The
 // physical lenses' ghost light (optics.lens_depth ≥ 2) is reckoned per train in the plan, so such
 // a figure with an accessory is rendered per setting (figure_response_applies is false).
 //
@@ -115,11 +126,18 @@ struct FigureResponse {
   // frames with an accessory (null when the figure has ghost light: optics.lens_depth ≥ 2).
   std::shared_ptr<const EvaluationPlan> plan;
   std::shared_ptr<const SpectralLevel> level;
-  // The plan's compensator sums for the accessory (kind, wedge position) last composed: made on
-  // the first frame with it (one band loop a direction), read by every frame after (the header).
+  // What frames with the accessory (kind, wedge position) last composed read, made on the first
+  // frame with it (the header): a flat view's compensator sums (its few units are evaluated every
+  // frame); a figure's 27 accessory planes, 3·(3·m + j) + c: the functionals m of the specimen's
+  // Mueller matrix that the accessory adds (Q and U against cos δ, V against sin δ) for the
+  // polarizer probe j, channel c, a grid point each (figure_accessory_planes).
+  struct Accessory {
+    CompensatorSums sums;
+    std::vector<float> planes;
+  };
   using AccessoryKey = std::pair<int, double>;
-  std::shared_ptr<BuildCache<AccessoryKey, CompensatorSums, Keep::Last>> accessory_sums =
-      std::make_shared<BuildCache<AccessoryKey, CompensatorSums, Keep::Last>>();
+  std::shared_ptr<BuildCache<AccessoryKey, Accessory, Keep::Last>> accessory =
+      std::make_shared<BuildCache<AccessoryKey, Accessory, Keep::Last>>();
   // A figure's unlit grid points within the cubic's reach of the disc, each with the lit point
   // whose value it holds (fill_rim: probes at the build, a developed grid on an accessory frame).
   std::vector<std::pair<std::size_t, std::size_t>> rim;
