@@ -320,8 +320,11 @@ double grain_growth_fraction(const SectionGrain& g, const glm::dvec2& p) {
 int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
   const SectionGrain::InclusionSet& in = *g.inclusions;
   const auto turn = [&](double s) { return in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0)); };
+  // within ≥ 1 is the whole grain: the gaps it filled after its faces stopped (s > 1: a crystal of
+  // a holocrystalline rock takes the space no face reached, grown_tiling.h) hold inclusions too.
+  const double within = in.within >= 1.0 ? std::numeric_limits<double>::infinity() : in.within;
   const double sp = grain_growth_fraction(g, p);
-  if (!(sp <= in.within + in.size_mm / std::max(g.semi_minor_mm, 1e-9))) return -1;
+  if (!(sp <= within + in.size_mm / std::max(g.semi_minor_mm, 1e-9))) return -1;
   const glm::dvec2 d = p - g.centre_mm;
   const double ap = turn(sp), cp = std::cos(ap), spn = std::sin(ap);
   const double site0 = std::floor((cp * d.x + spn * d.y) / in.spacing_mm + 0.5);
@@ -347,7 +350,7 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
         a = turn(sc);
       }
       c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
-      if (!(sc <= in.within)) continue;
+      if (!(sc <= within)) continue;
       const glm::dvec2 e = d - c;
       const double ca = std::cos(a), sa = std::sin(a);
       const double eu = (ca * e.x + sa * e.y) / (0.5 * in.size_mm), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);

@@ -90,7 +90,8 @@ struct AlterationRecipe {
 
 // Inclusions the phase's crystals grew round (section_map.h SectionGrain::InclusionSet): small
 // crystals of `mineral` on trails trail_spacing_mm apart, one site every spacing_mm, each occupied
-// with probability `fraction`, within growth fraction `within` of the core. trail_deg (section
+// with probability `fraction`, within growth fraction `within` of the core (1, the default: the
+// whole grain, the gaps it filled after its faces stopped included). trail_deg (section
 // frame, counter-clockwise from east) is the external foliation the porphyroblast overgrew; absent,
 // each crystal's trails take a random direction (sericite dusting a core). rotation_deg is the turn
 // of a crystal of the CSD's largest size while it grew: all grew at one rate until the end (the
