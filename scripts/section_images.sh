@@ -8,8 +8,8 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 render="${1:-$root/build}/app/pmsim-render"
 scene="$root/assets/scenes/basalt_section_ortho.json"
-declare -A at40=([granite]="-1.5 -0.7")
-for section in granite; do
+declare -A at40=([granite_hand_placed]="-1.5 -0.7")
+for section in granite_hand_placed; do
   for mag in 4 40; do
     na=0.10 x=0 y=0
     [ "$mag" = 40 ] && na=0.65 && read -r x y <<<"${at40[$section]}"
@@ -21,8 +21,8 @@ for section in granite; do
 done
 # Rocks grown from a recipe (assets/rocks): 4x and 40x, between crossed polars and in plane light;
 # the 40x view at a point of each rock chosen by eye (where several grains meet).
-declare -A rock40=([andesite]="0.8 0.3" [amphibolite]="0.5 0.2" [quartzite]="0.2 0.1" [marble]="0.4 -0.3" [sandstone]="0.3 0.2" [peridotite]="0.3 0.2" [gabbro]="-1.6 0.3" [basalt]="1.0 0.6" [schist]="-2.95 -2.3")
-for rock in andesite amphibolite quartzite marble sandstone peridotite gabbro basalt schist; do
+declare -A rock40=([granite]="2.3 -0.55" [andesite]="0.8 0.3" [amphibolite]="0.5 0.2" [quartzite]="0.2 0.1" [marble]="0.4 -0.3" [sandstone]="0.3 0.2" [peridotite]="0.3 0.2" [gabbro]="-1.6 0.3" [basalt]="1.0 0.6" [schist]="-2.95 -2.3")
+for rock in granite andesite amphibolite quartzite marble sandstone peridotite gabbro basalt schist; do
   common=(--set sample.section="$rock" --set render.width=480 --set render.height=360 --scale-bar)
   read -r x y <<<"${rock40[$rock]}"
   for light in crossed plane; do

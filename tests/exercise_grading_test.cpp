@@ -135,7 +135,7 @@ TEST(ExerciseClass, EveryTemplateGradesItsKeyFullAndItsPerturbationZero) {
 // student gets the grain at that place, in their own orientation; a mineral that does not match
 // the grain there is refused naming the pick.
 TEST(ExerciseClass, GrainAtAStagePosition) {
-  const auto file = load_section("granite");
+  const auto file = load_section("granite_hand_placed");
   glm::dvec2 at{0.0};
   int label = 0;
   for (int k = 1; k <= int(file->grains.size()) && !label; ++k)
@@ -145,7 +145,7 @@ TEST(ExerciseClass, GrainAtAStagePosition) {
   nlohmann::json j = {
       {"type", "exercise_template"},
       {"title", "t"},
-      {"specimen", {{"rule", "section"}, {"scene", {{"type", "microscope"}, {"sample", {{"type", "section"}, {"section", "granite"}}}}}}},
+      {"specimen", {{"rule", "section"}, {"scene", {{"type", "microscope"}, {"sample", {{"type", "section"}, {"section", "granite_hand_placed"}}}}}}},
       {"grains", {{{"id", "Q"}, {"at_mm", {at.x, at.y}}}}},
       {"tasks", {{{"task", "1"}, {"kind", "identify"}, {"grain", "Q"}}, {{"task", "2"}, {"kind", "optic_character"}, {"grain", "Q"}}}}};
   const ExerciseTemplate t = exercise_template_from_json(j, "at.json");

@@ -22,7 +22,7 @@ namespace {
 Scene section_scene(int width, int height, double magnification) {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = width;
   s.render.height = height;
   s.objective.magnification = magnification;
@@ -81,7 +81,7 @@ TEST(FieldOfView, FieldNumberOverMagnificationSpansTheShorterSide) {
 // is, pixel for pixel, the 2M× image of W × H (same mm per pixel, same pixel centres), and a grain's
 // area in pixels at 2M× is four times that at M× on the same pixel grid.
 TEST(FieldOfView, GrainSizesInPixelsScaleWithMagnification) {
-  const auto section = load_section("granite");
+  const auto section = load_section("granite_hand_placed");
   bool compared_area = false;
   for (const double m : {2.5, 4.0, 10.0, 20.0}) {
     const int w = 96, h = 80;
@@ -122,7 +122,7 @@ TEST(FieldOfView, GrainSizesInPixelsScaleWithMagnification) {
 // dx / mm_per_pixel pixels to the left (the crosshair now sees what was dx east of it); stage.y_mm
 // = dy shifts it down by dy / mm_per_pixel.
 TEST(FieldOfView, StageTranslationShiftsTheImageByWholePixels) {
-  const auto section = load_section("granite");
+  const auto section = load_section("granite_hand_placed");
   const int w = 120, h = 100, sx = 13, sy = 7;
   Scene s = section_scene(w, h, 10.0);
   const Labels base = grain_label_image(s, *section);
@@ -148,7 +148,7 @@ TEST(FieldOfView, StageTranslationShiftsTheImageByWholePixels) {
 // wherever the crosshair is on the section: pixel (x, y) of the turned image shows what pixel
 // (W − 1 − y, x) showed (square image, even size: pixel centres map onto pixel centres).
 TEST(FieldOfView, StageRotationTurnsAboutTheCrosshairPoint) {
-  const auto section = load_section("granite");
+  const auto section = load_section("granite_hand_placed");
   const int n = 100;
   Scene s = section_scene(n, n, 10.0);
   s.stage.x_mm = 0.3;
@@ -172,7 +172,7 @@ TEST(FieldOfView, StageRotationTurnsAboutTheCrosshairPoint) {
 // Conoscopic view of a section: the figure is that of the grain under the crosshair, at any stage
 // position.
 TEST(FieldOfView, ConoscopicFigureShowsTheGrainUnderTheCrosshair) {
-  const auto section = load_section("granite");
+  const auto section = load_section("granite_hand_placed");
   Scene s = section_scene(32, 32, 10.0);
   s.mode = ViewMode::Cono;
   s.bertrand_in = true;

@@ -12,7 +12,7 @@ namespace {
 Scene granite_scene() {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = 64;
   s.render.height = 48;
   s.stage_deg = 30.0;

@@ -72,10 +72,10 @@ TEST(PixelProbe, WedgeRetardationGrowsLeftToRightAndSectionsNameTheirMinerals) {
   EXPECT_NEAR(probe_pixel(w, 0.0, 0.5).retardation_nm, 0.0, 1e-9);
   Scene g;
   g.sample.type = SampleType::Section;
-  g.sample.section = "granite";
+  g.sample.section = "granite_hand_placed";
   const PixelProbe p = probe_pixel(g, 0.5, 0.5);
   // The centre pixel names the mineral of the domain under it: the section's own.
-  const auto granite = load_section("granite");
+  const auto granite = load_section("granite_hand_placed");
   const glm::dvec2 centre{0.0, 0.0};
   EXPECT_EQ(p.mineral, granite->mineral_of_domain(granite->domain_at(centre)));
 }

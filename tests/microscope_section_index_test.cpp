@@ -29,5 +29,5 @@ void expect_grid_equals_exhaustive(const std::string& name) {
 }  // namespace
 
 TEST(SectionIndex, GridLookupEqualsExhaustiveSearchEverywhere) {
-  expect_grid_equals_exhaustive("granite");  // the hand-placed file
+  expect_grid_equals_exhaustive("granite_hand_placed");  // the hand-placed file
 }

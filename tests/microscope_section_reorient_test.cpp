@@ -38,8 +38,8 @@ TEST(SectionReorient, EulerAnglesAreUniformOverRotations) {
 }
 
 TEST(SectionReorient, SameGrainsNewOrientationsReproducibly) {
-  const auto file = load_section("granite");
-  const auto a = load_section("granite", 7), b = load_section("granite", 7), c = load_section("granite", 8);
+  const auto file = load_section("granite_hand_placed");
+  const auto a = load_section("granite_hand_placed", 7), b = load_section("granite_hand_placed", 7), c = load_section("granite_hand_placed", 8);
   EXPECT_EQ(a, b) << "one seed, one section (cached)";
   ASSERT_EQ(a->grains.size(), file->grains.size());
   int changed = 0, differ_between_seeds = 0;
@@ -58,7 +58,7 @@ TEST(SectionReorient, SameGrainsNewOrientationsReproducibly) {
 TEST(SectionReorient, SceneCheckRefusesNegativeSeedsAndMaps) {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.sample.orientation_seed = 3;
   EXPECT_NO_THROW(check_scene(s));
   s.sample.orientation_seed = -1;

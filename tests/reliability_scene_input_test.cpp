@@ -272,7 +272,7 @@ TEST(SetOption, AnUnknownMineralIsRefusedWhateverTheSampleType) {
   // On a thin-section scene sample.mineral is not used, and an unknown name passed silently (a
   // later switch to sample.type=plate then failed on a key the user did not touch). Finding F6.
   Scene s;
-  apply_setting(s, "sample.section=granite");
+  apply_setting(s, "sample.section=granite_hand_placed");
   apply_setting(s, "sample.type=section");
   EXPECT_INPUT_ERROR(apply_setting(s, "sample.mineral=unobtainium"), "sample.mineral", "unobtainium");
 }

@@ -205,7 +205,7 @@ TEST(ProgressiveRenderer, ALargeThinSectionStartsWithCoarsePreviewsToo) {
   // still keeps the first image within the interactive target (mean CIEDE2000 ≤ 5).
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = 512;
   const PreviewRun run = run_with_previews(s);
   ASSERT_GE(run.images.size(), 2u);

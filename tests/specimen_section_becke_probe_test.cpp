@@ -179,7 +179,7 @@ TEST(SectionBeckeProbe, MediumIndexFlipsTheLineAtTheSectionEdge) {
 // line flips with sample.medium_index between 1.40 and 1.80 (granite's minerals lie between).
 TEST(SectionBeckeProbe, MediumIndexFlipsTheLineAtACrack) {
   pmsim::Scene scene = section_scene();
-  scene.sample.section = "granite";
+  scene.sample.section = "granite_hand_placed";
   const auto map = pmsim::load_scene_section(scene);
   const double h = pmsim::section_slab_options(scene).spacing_um;
   const std::vector<int> media = pmsim::section_slab_media(*map);

@@ -241,7 +241,7 @@ TEST(SpecimenSectionCrossed, GrainAtExtinctionStaysDark) {
 TEST(SpecimenSectionCrossed, CompensatorIsAppliedToTheTracedResponse) {
   pmsim::Scene s;
   s.sample.type = pmsim::SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = 32;
   EXPECT_TRUE(pmsim::is_traced_specimen(s));
   s.compensator = pmsim::Compensator::Gypsum;

@@ -277,7 +277,7 @@ TEST(SpecimenSectionRelief, MediumIndexSetsTheOutlineContrast) {
 TEST(SpecimenSectionRelief, ReliefOffGivesTheFlatImage) {
   pmsim::Scene scene;
   scene.sample.type = pmsim::SampleType::Section;
-  scene.sample.section = "granite";
+  scene.sample.section = "granite_hand_placed";
   scene.analyzer_in = false;
   scene.render.width = scene.render.height = 48;
   scene.render.spp = 4;
@@ -347,7 +347,7 @@ TEST(SpecimenSectionRelief, TracedImageRegistersWithTheSectionImage) {
 TEST(SpecimenSectionRelief, SlabIsCachedAcrossViewChanges) {
   pmsim::Scene scene;
   scene.sample.type = pmsim::SampleType::Section;
-  scene.sample.section = "granite";
+  scene.sample.section = "granite_hand_placed";
   scene.analyzer_in = false;
   scene.render.width = scene.render.height = 32;
   const auto a = pmsim::section_slab(scene);

@@ -86,7 +86,7 @@ TEST(UiFigureResponse, StageTurnAndPolarSwingAreComposedFromTheFiguresResponse) 
 TEST(UiFigureResponse, StageTurnOnAFlatSectionIsComposedFromItsProbes) {
   Scene s;  // the default granite between crossed polars, without relief: the flat section image
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.optics.relief = false;
   s.render.width = s.render.height = 64;
   std::string log;

@@ -44,7 +44,7 @@ TEST(FileBrowser, ListsFoldersThenTheFilesItOpensSortedAndSkipsHiddenOnes) {
 TEST(FileBrowser, TypingAMapPathAndEnterPutsTheMapOnTheStage) {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = 64;
   std::string log;
   auto d = HeadlessDriver::create(s, 1280, 800, log);
@@ -58,7 +58,7 @@ TEST(FileBrowser, TypingAMapPathAndEnterPutsTheMapOnTheStage) {
   d->inject_key(GLFW_KEY_ESCAPE, false, false);
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(d->frame());
   EXPECT_FALSE(d->app().browsing());
-  EXPECT_EQ(d->app().scene().sample.section, "granite");
+  EXPECT_EQ(d->app().scene().sample.section, "granite_hand_placed");
 
   // The dialog opens in the current section's folder (assets/sections); a relative path typed
   // into its location field is taken from there, so this reaches the shipped map next door.

@@ -76,7 +76,7 @@ FirstImage measure_first_image(UiDriver& d, int changes) {
 TEST(UiFrameRate, ReportsFramesPerSecondWhileRendering) {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = 512;
   std::string log;
   auto d = HeadlessDriver::create(s, 1280, 800, log);

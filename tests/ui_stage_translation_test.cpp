@@ -21,7 +21,7 @@ namespace {
 std::unique_ptr<HeadlessDriver> section_driver() {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = 64;
   std::string log;
   auto d = HeadlessDriver::create(s, 1280, 800, log);

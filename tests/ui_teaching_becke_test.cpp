@@ -33,7 +33,7 @@ std::string wait_for_text(UiDriver& d, const std::string& want, double timeout_s
 TEST(UiTeachingBecke, ThinSectionShowsTheBoundaryAndFollowsTheMountingMedium) {
   Scene s;
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.analyzer_in = false;
   s.objective.magnification = 40.0;
   s.render.width = s.render.height = 32;

@@ -142,7 +142,7 @@ def granite(rng):
     return section("granite", [w, h], src, grains)
 
 
-SECTIONS = (("granite", granite, 7),)
+SECTIONS = (("granite_hand_placed", granite, 7),)
 
 
 def dump(sec):

@@ -27,9 +27,9 @@ std::vector<BenchScene> bench_scenes(int size, std::vector<std::string>* notes) 
     out.push_back({"quartz-30um-45deg-ortho",
                    "quartz 30 µm, optic axis in the stage plane at 45°, crossed polars", s, false, false});
   }
-  {  // A thin section of grains (granite preferred).
+  {  // A thin section of grains (the hand-placed granite its numbers were measured on, preferred).
     std::string section;
-    for (const char* name : {"granite", "basalt"})
+    for (const char* name : {"granite_hand_placed", "granite", "basalt"})
       if (section_known(name)) {
         section = name;
         break;

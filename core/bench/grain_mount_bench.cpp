@@ -145,7 +145,7 @@ std::vector<BenchRow> crossed_polar_grain_bench_rows(int size, std::ostream& log
 std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
   Scene scene;
   scene.sample.type = SampleType::Section;
-  scene.sample.section = "granite";
+  scene.sample.section = "granite_hand_placed";
   scene.analyzer_in = false;
   scene.render.width = scene.render.height = size;
   return timed_specimen_rows(
@@ -157,7 +157,7 @@ std::vector<BenchRow> section_relief_bench_rows(int size, std::ostream& log) {
 std::vector<BenchRow> section_crossed_bench_rows(int size, std::ostream& log) {
   Scene scene;  // crossed polars: the Scene's defaults
   scene.sample.type = SampleType::Section;
-  scene.sample.section = "granite";
+  scene.sample.section = "granite_hand_placed";
   scene.render.width = scene.render.height = std::min(size, 256);
   return timed_specimen_rows(
       "section-granite-crossed", "crossed-polars", scene, section_slab,

@@ -32,7 +32,7 @@ double now_ms() {
 Scene granite_crossed(int size) {
   Scene s;  // crossed polars: the Scene's defaults
   s.sample.type = SampleType::Section;
-  s.sample.section = "granite";
+  s.sample.section = "granite_hand_placed";
   s.render.width = s.render.height = size;
   return s;
 }
