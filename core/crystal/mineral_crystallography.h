@@ -83,7 +83,7 @@ const MineralCrystallography* find_mineral_crystallography(std::string_view name
 // orientation) has only a stand-in for its indicatrix there: `c` is anisotropic and its mineral
 // data `m` (nullptr: none) has no optical_orientation, so X, Y, Z are taken along the crystal
 // frame's e1, e2, e3 (section_map.cpp indicatrix_in_section) and its extinction angles are not
-// the mineral's (issue 22; plagioclase and microcline today, decided by their files, not names).
+// the mineral's (issue 22; plagioclase today, decided by its file, not its name).
 // An isotropic crystal needs no orientation: false.
 bool optical_orientation_is_stand_in(const MineralCrystallography* m, const Crystal& c);
 

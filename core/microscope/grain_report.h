@@ -31,6 +31,10 @@ constexpr double kGrainReportRetardationWavelengthNm = kOrderWavelengthNm;
 struct GrainTwinReport {
   std::string law;                           // SectionGrain::twin_law
   std::vector<double> extinction_stage_deg;  // of the twin individual (odd lamellae)
+  // A cross-hatched grain's second set (SectionGrain::cross_twin): its law and the extinction of
+  // its individual (odd lamellae of the second set, even of the first); empty otherwise.
+  std::string cross_law;
+  std::vector<double> cross_extinction_stage_deg;
 };
 
 // A grain with undulose extinction (SectionGrain subgrains): its bands and how far its extinction
@@ -86,7 +90,7 @@ struct GrainReport {
   // empty and the retardation 0; the shape (elongation) and the lattice (euler_deg) still are given.
   bool opaque = false;
   // The indicatrix is a stand-in on the crystal frame (SectionGrain::optics_stand_in: the mineral
-  // file has no optical_orientation, plagioclase and microcline today), so the extinction stage
+  // file has no optical_orientation, plagioclase today), so the extinction stage
   // angles, extinction angle, sign of elongation and slow direction above are those of the
   // stand-in, not the real mineral's (issue 22). False ("published"): the mineral file has an
   // optical_orientation, or the grain is isotropic or uniaxial given by its optic axis (nothing
