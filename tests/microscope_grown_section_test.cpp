@@ -571,6 +571,20 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
   // Zircon: 0.35 of sites 400 × 350 µm apart, each 30 × 15 µm (~4.5 grid points): about 8.8·10⁻⁴
   // of the biotite, a few dozen points here. Present, and nowhere but in biotite (above).
   EXPECT_GT(zircon, 0);
+  // Microcline's tartan: albite lamellae crossed by pericline lamellae, in the grains cut with both
+  // composition planes steep (SectionGeometry.MicroclineCrossHatchIsAGridOfFourIndividuals tests
+  // the grid itself); only microcline carries a cross set.
+  int microcline = 0, tartan = 0;
+  for (const SectionGrain& g : m->grains) {
+    if (g.cross_twin) {
+      EXPECT_EQ(g.mineral, "microcline");
+      EXPECT_EQ(g.cross_twin->law, "pericline");
+      EXPECT_EQ(g.twin_law, "albite");
+    }
+    if (g.mineral == "microcline") ++microcline, tartan += g.cross_twin.has_value();
+  }
+  std::printf("microcline: %d of %d grains cross-hatched\n", tartan, microcline);
+  EXPECT_GT(tartan, 0);
 }
 
 // The shipped schist's garnets overgrew the foliation while they turned (snowball garnets,

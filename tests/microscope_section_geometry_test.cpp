@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -247,6 +248,89 @@ TEST(SectionGeometry, AlbiteLamellaeLieOnThe010Trace) {
   // from the cell; plagioclase's file has no optical orientation).
   ASSERT_TRUE(albite) << "plagioclase.json lists the albite twin law";
   expect_lamellae_on_twin_plane("plagioclase", "albite", {0, 1, 0});
+}
+
+// Microcline cut parallel to (001), a north: albite lamellae (on (010)) crossed by pericline
+// lamellae (on the rhombic section, (100) in its file) make the cross-hatched grid of four twin
+// individuals, nearly orthogonal on (001) (Handbook of Mineralogy, microcline: the orthogonal grid
+// on (001)). The host extinguishes at 15.5° to the (010) trace, its optical orientation's datum
+// (Des Cloizeaux's 15°30′); the albite individual, turned about b*, nearly mirrors it, and the
+// pericline individual, turned about b, mirrors it about b's trace: 2γ − 15.5° = 158.75° from a.
+TEST(SectionGeometry, MicroclineCrossHatchIsAGridOfFourIndividuals) {
+  const MineralCrystallography* mc = find_mineral_crystallography("microcline");
+  ASSERT_NE(mc, nullptr);
+  ASSERT_TRUE(mc->orientation.has_value()) << "microcline.json gives its optical orientation";
+  const glm::dvec3 up = plane_normal(mc->cell, {0, 0, 1}), a = lattice_direction(mc->cell, {1, 0, 0});
+  json s = one_grain_section("microcline", euler_with(*mc, up, a));
+  s["grains"][0]["twin"] = {{"law", "albite"}, {"lamella_mm", 0.04}, {"cross", {{"law", "pericline"}, {"lamella_mm", 0.04}}}};
+  const SectionMap m = section_from_json(s, "tartan test");
+  const SectionGrain& g = m.grains[0];
+  ASSERT_TRUE(g.twinned);
+  ASSERT_TRUE(g.cross_twin.has_value()) << "both composition planes stand upright in a (001) cut";
+  EXPECT_EQ(g.crystal_domain_count(), 4);
+  std::map<int, long> area;
+  std::vector<glm::dvec2> boundary;
+  const double step = 0.002;
+  long points = 0;
+  for (double y = -0.5; y <= 0.5; y += step)
+    for (double x = -0.5; x <= 0.5; x += step) {
+      const int d = m.domain_at({x, y});
+      if (m.domain_part(d).grain < 0) continue;  // a cleavage crack
+      ++points, ++area[m.domain_part(d).twin];
+      const int dx = m.domain_at({x + step, y}), dy = m.domain_at({x, y + step});
+      if ((dx != d && m.domain_part(dx).grain >= 0) || (dy != d && m.domain_part(dy).grain >= 0)) boundary.push_back({x, y});
+    }
+  ASSERT_EQ(area.size(), 4u);
+  // A checkerboard of 40 µm cells, 25 across the square: each individual a quarter of the area,
+  // give or take the cut cells along the square's edges (one row in 25, 4 %).
+  for (const auto& [twin, n] : area) EXPECT_NEAR(double(n) / points, 0.25, 0.04) << "individual " << twin;
+  const auto trace_deg = [&](const glm::dvec3& n_lattice) {
+    const glm::dvec3 n = *g.lattice_to_section * n_lattice;
+    return std::fmod(degrees(std::atan2(n.x, -n.y)) + 360.0, 180.0);  // the trace ⟂ (n.x, n.y)
+  };
+  const double albite = trace_deg(plane_normal(mc->cell, {0, 1, 0})), pericline = trace_deg(plane_normal(mc->cell, {1, 0, 0}));
+  const double first = dominant_line_deg(boundary, step), second = dominant_line_deg(boundary, step, first);
+  const double found_albite = std::abs(std::remainder(first - albite, 180.0)) < 10 ? first : second;
+  const double found_pericline = found_albite == first ? second : first;
+  // Boundaries on a 2 µm grid along straight lines: Hough direction to ~0.2°; 0.5° margin.
+  EXPECT_NEAR(std::remainder(found_albite - albite, 180.0), 0.0, 0.5);
+  EXPECT_NEAR(std::remainder(found_pericline - pericline, 180.0), 0.0, 0.5);
+  // Nearly orthogonal: (010) and (100) traces on (001) meet at 180° − γ* … here within 5° of 90°.
+  EXPECT_NEAR(std::abs(std::remainder(found_albite - found_pericline, 180.0)), 90.0, 5.0);
+  // Extinction from the a edge (north), folded into (−45°, 45°].
+  const auto extinction_deg = [&](int twin) {
+    const int d = g.first_domain + twin;
+    const SectionOptics so = section_optics(m.orientation_of_domain(d), m.crystal_of_domain(d)->principal_indices(589.0), {0, 0, 1});
+    return std::remainder(extinction_from(so, {0, 1, 0}).to_slow_deg, 90.0);
+  };
+  const double host = extinction_deg(0), twin_a = extinction_deg(1), twin_p = extinction_deg(2), both = extinction_deg(3);
+  std::printf("microcline (001): extinction host %.2f, albite %.2f, pericline %.2f, both %.2f deg from a\n", host, twin_a, twin_p, both);
+  // The datum itself: X in (001) at 15.5° from [100], Y ⟂ (001), so the section's vibration
+  // directions are X and Z exactly (1e-6: rounding only).
+  EXPECT_NEAR(std::abs(host), 15.5, 1e-6);
+  // Pericline: the half-turn about b, which lies in (001), mirrors the host about b's trace,
+  // γ = 87.125° from a: exact up to rounding.
+  EXPECT_NEAR(std::remainder(twin_p - std::remainder(2 * mc->cell.gamma_deg - host, 90.0), 90.0), 0.0, 1e-6);
+  // Albite: the half-turn about b*, which stands α* − 90° = 1.07° out of (001), nearly mirrors the
+  // host about the a edge's normal: −15.5°, to within 1°.
+  EXPECT_NEAR(twin_a, -host, 1.0);
+  // The two sets' individuals differ from the host by 25–40°, from each other by 6°: the grid's
+  // contrast between crossed polars (Des Cloizeaux: ±15°30′ about the edge).
+  EXPECT_GT(std::abs(std::remainder(twin_a - host, 90.0)), 25.0);
+  EXPECT_GT(std::abs(std::remainder(twin_p - host, 90.0)), 25.0);
+  EXPECT_NEAR(std::abs(std::remainder(both - host, 90.0)), 0.0, 10.0);
+}
+
+// A cross-hatched set crosses lamellae: a simple twin with a "cross" is refused, naming the key.
+TEST(SectionGeometry, CrossHatchOnASimpleTwinIsBadInputNamingTheKey) {
+  json s = one_grain_section("microcline", {10.0, 80.0, 30.0});
+  s["grains"][0]["twin"] = {{"law", "albite"}, {"cross", {{"law", "pericline"}, {"lamella_mm", 0.04}}}};
+  try {
+    (void)section_from_json(s, "bad tartan");
+    FAIL() << "a cross set on a simple twin was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("grains[0].twin.lamella_mm"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SectionGeometry, ZonedGrainHasDomainsOfDifferentExtinction) {

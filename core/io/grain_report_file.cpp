@@ -24,7 +24,11 @@ json grain_report_json(const GrainReport& r) {
             // Whether the indicatrix (and so every extinction value above) is the mineral file's
             // published optical orientation or a stand-in on the crystal frame (issue 22).
             {"optics", grain_optics_name(r)}};
-  if (r.twin) j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
+  if (r.twin) {
+    j["twin"] = {{"law", r.twin->law}, {"extinction_stage_deg", r.twin->extinction_stage_deg}};
+    if (!r.twin->cross_law.empty())
+      j["twin"]["cross"] = {{"law", r.twin->cross_law}, {"extinction_stage_deg", r.twin->cross_extinction_stage_deg}};
+  }
   if (r.alteration) j["alteration"] = {{"mineral", r.alteration->mineral}, {"vein_mm", r.alteration->vein_mm}};
   if (const auto& in = r.inclusions)
     j["inclusions"] = {{"mineral", in->mineral},

@@ -6,7 +6,8 @@
 //                "cleavage_traces_deg": [...], "elongation_deg": x | null,
 //                "extinction_stage_deg": [...], "extinction_angle_deg": x | null,
 //                "sign_of_elongation": "length-slow" | "length-fast" | null,
-//                "retardation_nm", "twin": {"law", "extinction_stage_deg"} (twinned grains only)}, …]}
+//                "retardation_nm", "twin": {"law", "extinction_stage_deg",
+//                "cross": {"law", "extinction_stage_deg"} (cross-hatched grains only)} (twinned grains only)}, …]}
 // Angles in degrees; image angles counter-clockwise from +x at the current stage angle.
 #include <string>
 #include <vector>

@@ -173,15 +173,21 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     r.retardation_nm = 0.0;
     r.extinction_angle_deg.reset();
     r.sign_of_elongation.reset();
-    if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}};
+    if (g.twinned) r.twin = GrainTwinReport{g.twin_law, {}, g.cross_twin ? g.cross_twin->law : "", {}};
     if (!g.subgrain_rotation.empty()) r.subgrains = GrainSubgrainReport{g.subgrain_mm, g.subgrain_step_deg, std::nullopt};
     return r;
   }
   if (!g.subgrain_rotation.empty()) r.subgrains = subgrain_report(g);
-  if (g.twinned)
+  if (g.twinned) {
     r.twin = GrainTwinReport{
         g.twin_law, extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm),
                                       scene.polarizer_deg)};
+    if (const auto& x = g.cross_twin) {
+      r.twin->cross_law = x->law;
+      r.twin->cross_extinction_stage_deg =
+          extinction_stages(optics_of(g, x->op * g.orientation, kGrainReportIndexWavelengthNm), scene.polarizer_deg);
+    }
+  }
   return r;
 }
 

@@ -74,7 +74,7 @@ DomainPart SectionMap::domain_part(int d) const {
   if (d < 2 || domain_grain_[d] < 0) return part;
   part.grain = domain_grain_[d];
   const SectionGrain& g = grains[part.grain];
-  const int per_twin = g.twinned ? 2 : 1, subgrains = g.subgrain_count(), k = d - g.first_domain;
+  const int per_twin = g.twin_individuals(), subgrains = g.subgrain_count(), k = d - g.first_domain;
   if (g.vein && k == g.crystal_domain_count()) {
     part.vein = true;
     return part;
@@ -120,9 +120,9 @@ void SectionMap::finish() {
     SectionGrain& g = grains[i];
     g.first_domain = static_cast<int>(domain_grain_.size());
     for (const SectionZone& z : g.zones)
-      for (int twin = 0; twin < (g.twinned ? 2 : 1); ++twin)
+      for (int twin = 0; twin < g.twin_individuals(); ++twin)
         for (int sub = 0; sub < g.subgrain_count(); ++sub) {
-          const glm::dmat3& o = twin ? z.twin_orientation : z.orientation;
+          const glm::dmat3 o = (twin & 2 ? g.cross_twin->op : glm::dmat3(1.0)) * (twin & 1 ? z.twin_orientation : z.orientation);
           domain_orientation_.push_back(g.subgrain_rotation.empty() ? o : g.subgrain_rotation[sub] * o);
           domain_grain_.push_back(static_cast<int>(i));
         }
@@ -388,6 +388,8 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (g.twinned) {
     const double t = glm::dot(d, g.twin_normal);
     twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
+    if (const auto& x = g.cross_twin)
+      twin |= (static_cast<int>(std::floor(glm::dot(d, x->normal) / x->lamella_mm)) & 1) << 1;
   }
   int sub = 0;
   if (const int n = g.subgrain_count(); n > 1) {  // bands centred on the grain's centre; the outer two take the rest
@@ -395,7 +397,7 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
     const double band = std::round(glm::dot(d, g.subgrain_normal) / g.subgrain_mm);
     sub = half + static_cast<int>(std::clamp(band, -double(half), double(half)));
   }
-  return g.first_domain + (zone * (g.twinned ? 2 : 1) + twin) * g.subgrain_count() + sub;
+  return g.first_domain + (zone * g.twin_individuals() + twin) * g.subgrain_count() + sub;
 }
 
 int DomainRaster::domain_at(const glm::dvec2& p, int outside) const {
@@ -453,8 +455,8 @@ std::optional<double> crack_spacing_mm(CleavageQuality q) {
 
 // The indicatrix (columns X, Y, Z) of a grain whose crystal frame is L in the section: L times
 // the mineral file's X, Y, Z in the crystal frame. A mineral with a lattice but no
-// optical_orientation in its file (plagioclase, the whole series, and microcline: the library has
-// no published orientation of their X, Y, Z; see their files' "note") gets X, Y, Z along the
+// optical_orientation in its file (plagioclase, the whole series: the library has no published
+// orientation of its X, Y, Z; see its file's "note") gets X, Y, Z along the
 // crystal frame's e1, e2, e3. That is a stand-in, not data: such grains are shaped, twinned and
 // cracked from their lattice and show their indices' birefringence, but their extinction angles
 // to those traces (and so the Michel-Lévy curve) are not the mineral's.
@@ -578,6 +580,61 @@ class GrainLookups {
   std::unordered_map<std::string, const MineralCrystallography*> crystallography_;
 };
 
+// A twin law of the grain's mineral file (the twin object's "law", matched as a prefix of the
+// file's names) as it shows in this section: the twin operation in the section frame and the
+// composition plane's normal; `shows` false where that plane lies too flat (lamellae of width
+// lamella_mm smeared through the thickness, or a simple twin's halves overlapping).
+struct TwinInSection {
+  std::string law;
+  glm::dmat3 op{1.0};
+  glm::dvec3 plane_normal{0.0, 0.0, 1.0};
+  bool shows = false;
+};
+TwinInSection twin_in_section(const JsonReader& t, const std::string& mineral, const MineralCrystallography* mc,
+                              const glm::dmat3& L, double lamella_mm, double thickness_um) {
+  TwinInSection r;
+  r.law = t.require<std::string>("law");
+  if (!mc || mc->twins.empty())
+    t.fail("law", "mineral '" + mineral + "' has no twin laws in its file (or the grain no euler_deg)");
+  const TwinLaw* found = nullptr;
+  for (const TwinLaw& tl : mc->twins)
+    if (lower(tl.law).rfind(lower(r.law), 0) == 0) {
+      found = &tl;
+      break;
+    }
+  if (!found) {
+    std::string known;
+    for (const TwinLaw& tl : mc->twins) known += (known.empty() ? "" : "; ") + tl.law;
+    t.fail("law", "not a twin law of " + mineral + " (its file lists: " + known + ")");
+  }
+  r.plane_normal = L * plane_normal(mc->cell, found->plane);
+  // The twin operation: a half-turn about the twin axis. A law whose name gives "twin axis
+  // [uvw]" is a parallel twin about that lattice direction; otherwise it is a normal twin, the
+  // half-turn about the composition-plane normal (albite, Manebach, Baveno, the pyroxene and
+  // amphibole (100) twins; Nesse 2012 §7 "twinning").
+  // A law named without its axis takes the axis of the named law: Carlsbad [001], pericline
+  // [010] (parallel twins; Nesse 2012 §7, Deer, Howie & Zussman 2013 feldspars), mica law
+  // [310] (Handbook of Mineralogy, muscovite).
+  glm::dvec3 axis = r.plane_normal;
+  const std::string lt = lower(found->law);
+  std::optional<LatticeDirection> named_axis;
+  if (lt.rfind("carlsbad", 0) == 0) named_axis = LatticeDirection{0, 0, 1};
+  if (lt.rfind("pericline", 0) == 0) named_axis = LatticeDirection{0, 1, 0};
+  if (lt.rfind("mica", 0) == 0) named_axis = LatticeDirection{3, 1, 0};
+  if (const auto at = lt.find("twin axis ["); at != std::string::npos) {
+    const auto end = lt.find(']', at);
+    named_axis = t.checked("law", *t.find("law"), [&](const json&) {
+      return parse_lattice_direction(found->law.substr(at + 10, end - at - 9));
+    });
+  }
+  if (named_axis) axis = L * lattice_direction(mc->cell, *named_axis);
+  const double limit =
+      lamella_mm > 0.0 ? lamella_max_inclination_deg(lamella_mm, thickness_um) : kSimpleTwinMaxInclinationDeg;
+  r.shows = inclination_from_vertical_deg(r.plane_normal) <= limit;
+  r.op = half_turn(axis);
+  return r;
+}
+
 void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, GrainLookups& templates) {
   const MineralCrystallography* mc = templates.crystallography(g.mineral);
   const bool has_lattice = g.lattice_to_section.has_value() && mc;
@@ -648,53 +705,26 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, Grai
   }
 
   if (const auto t = gr.optional_object("twin")) {
-    const std::string law = t->require<std::string>("law");
-    if (!has_lattice || mc->twins.empty())
-      t->fail("law", "mineral '" + g.mineral + "' has no twin laws in its file (or the grain no euler_deg)");
-    const TwinLaw* found = nullptr;
-    for (const TwinLaw& tl : mc->twins)
-      if (lower(tl.law).rfind(lower(law), 0) == 0) {
-        found = &tl;
-        break;
-      }
-    if (!found) {
-      std::string known;
-      for (const TwinLaw& tl : mc->twins) known += (known.empty() ? "" : "; ") + tl.law;
-      t->fail("law", "not a twin law of " + g.mineral + " (its file lists: " + known + ")");
-    }
     g.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
-    const glm::dvec3 n = L * plane_normal(mc->cell, found->plane);
-    // The twin operation: a half-turn about the twin axis. A law whose name gives "twin axis
-    // [uvw]" is a parallel twin about that lattice direction; otherwise it is a normal twin, the
-    // half-turn about the composition-plane normal (albite, Manebach, Baveno, the pyroxene and
-    // amphibole (100) twins; Nesse 2012 §7 "twinning").
-    // A law named without its axis takes the axis of the named law: Carlsbad [001], pericline
-    // [010] (parallel twins; Nesse 2012 §7, Deer, Howie & Zussman 2013 feldspars), mica law
-    // [310] (Handbook of Mineralogy, muscovite).
-    glm::dvec3 axis = n;
-    const std::string lt = lower(found->law);
-    std::optional<LatticeDirection> named_axis;
-    if (lt.rfind("carlsbad", 0) == 0) named_axis = LatticeDirection{0, 0, 1};
-    if (lt.rfind("pericline", 0) == 0) named_axis = LatticeDirection{0, 1, 0};
-    if (lt.rfind("mica", 0) == 0) named_axis = LatticeDirection{3, 1, 0};
-    if (const auto at = lt.find("twin axis ["); at != std::string::npos) {
-      const auto end = lt.find(']', at);
-      named_axis = gr.checked("twin", t->node(), [&](const json&) {
-        return parse_lattice_direction(found->law.substr(at + 10, end - at - 9));
-      });
-    }
-    if (named_axis) axis = L * lattice_direction(mc->cell, *named_axis);
-    const double limit = g.lamella_mm > 0.0 ? lamella_max_inclination_deg(g.lamella_mm, thickness_um)
-                                            : kSimpleTwinMaxInclinationDeg;
-    if (inclination_from_vertical_deg(n) <= limit) {
+    const TwinInSection tw = twin_in_section(*t, g.mineral, has_lattice ? mc : nullptr, L, g.lamella_mm, thickness_um);
+    if (tw.shows) {
       g.twinned = true;
-      g.twin_law = law;
-      const glm::dvec3 tr = plane_trace({0, 0, 1}, n);
+      g.twin_law = tw.law;
+      const glm::dvec3 tr = plane_trace({0, 0, 1}, tw.plane_normal);
       g.twin_trace_rad = std::atan2(tr.y, tr.x);
-      g.twin_normal = glm::normalize(glm::dvec2(n.x, n.y));
-      const glm::dmat3 R = half_turn(axis);
-      g.twin_orientation = R * g.orientation;
-      for (SectionZone& z : g.zones) z.twin_orientation = R * z.orientation;
+      g.twin_normal = glm::normalize(glm::dvec2(tw.plane_normal.x, tw.plane_normal.y));
+      g.twin_orientation = tw.op * g.orientation;
+      for (SectionZone& z : g.zones) z.twin_orientation = tw.op * z.orientation;
+    }
+    if (const auto x = t->optional_object("cross")) {
+      const double w = x->require<double>("lamella_mm", Range::above(0));
+      if (!(g.lamella_mm > 0.0)) t->fail("lamella_mm", "a cross-hatched twin crosses lamellae: the first set needs lamella_mm > 0 too");
+      const TwinInSection cx = twin_in_section(*x, g.mineral, has_lattice ? mc : nullptr, L, w, thickness_um);
+      // Only across lamellae that show: where the first set's plane lies too flat, the grain
+      // shows neither grid nor lamellae (a cut near the second set's plane would show that set
+      // alone; not modelled).
+      if (g.twinned && cx.shows)
+        g.cross_twin = SectionGrain::CrossTwin{cx.law, cx.op, glm::normalize(glm::dvec2(cx.plane_normal.x, cx.plane_normal.y)), w};
     }
   }
   if (!g.twinned) {

@@ -88,6 +88,19 @@ struct SectionGrain {
   double twin_trace_rad = 0.0;       // direction of the composition-plane trace
   double lamella_mm = 0.0;           // lamella width; 0: a simple twin (one composition plane)
   glm::dvec2 twin_normal{0.0, 1.0};  // unit normal of the trace in the section
+  // A second set of lamellae crossing the first ("twin": {..., "cross": {"law", "lamella_mm"}}):
+  // microcline's pericline twins across its albite twins, the cross-hatched (tartan) grid
+  // (Deer, Howie & Zussman 2013, alkali feldspars). Its individuals are the first set's turned by
+  // `op`, the second law's twin operation: four per zone, the first set's parity in bit 0 of the
+  // twin index and this set's in bit 1. Only on a lamellar twin whose planes both show.
+  struct CrossTwin {
+    std::string law;
+    glm::dmat3 op{1.0};                // the twin operation, in the section frame
+    glm::dvec2 normal{0.0, 1.0};       // unit normal of its trace
+    double lamella_mm = 0.0;
+  };
+  std::optional<CrossTwin> cross_twin;
+  int twin_individuals() const { return twinned ? (cross_twin ? 4 : 2) : 1; }
 
   // Undulose extinction ("subgrains" in a section file): the lattice bent about an axis and
   // polygonized into subgrains, bands subgrain_mm wide between parallel low-angle tilt walls, each
@@ -148,7 +161,7 @@ struct SectionGrain {
   // individual, subgrain (the last varying fastest); then the vein's, if any; then one per
   // inclusion orientation.
   int first_domain = 2;
-  int crystal_domain_count() const { return static_cast<int>(zones.size()) * (twinned ? 2 : 1) * subgrain_count(); }
+  int crystal_domain_count() const { return static_cast<int>(zones.size()) * twin_individuals() * subgrain_count(); }
   int first_inclusion_domain() const { return first_domain + crystal_domain_count() + (vein ? 1 : 0); }
 };
 

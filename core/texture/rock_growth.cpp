@@ -457,7 +457,11 @@ nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, std::uint6
   if (ph.porphyroblast) j["growth"]["overgrows"] = true;
   if (ph.aspect) j["aspect"] = *ph.aspect;
   if (ph.zoning) j["zones"] = zones_json(ph);
-  if (c.twinned) j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
+  if (c.twinned) {
+    j["twin"] = {{"law", ph.twin->law}, {"lamella_mm", ph.twin->lamella_mm}};
+    if (!ph.twin->cross_law.empty())
+      j["twin"]["cross"] = {{"law", ph.twin->cross_law}, {"lamella_mm", ph.twin->cross_lamella_mm}};
+  }
   if (ph.undulose) j["subgrains"] = subgrains_json(*ph.undulose, rng);
   if (ph.alteration && rng.uniform() < ph.alteration->fraction) {
     // The secondary mineral in a random orientation of its own (it grew in the cracks), or in the

@@ -86,6 +86,12 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     tr.law = t->require<std::string>("law");
     tr.lamella_mm = t->get_or("lamella_mm", 0.0, Range::at_least(0));
     tr.fraction = t->get_or("fraction", 1.0, Range::closed(0, 1));
+    if (const auto x = t->optional_object("cross")) {
+      x->warn_unknown_keys({"law", "lamella_mm"});
+      tr.cross_law = x->require<std::string>("law");
+      tr.cross_lamella_mm = x->require<double>("lamella_mm", Range::above(0));
+      if (!(tr.lamella_mm > 0.0)) t->fail("lamella_mm", "a cross-hatched twin crosses lamellae: the first set needs lamella_mm > 0 too");
+    }
     p.twin = tr;
   }
   if (const auto f = pr.optional_object("fabric")) {

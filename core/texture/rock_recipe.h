@@ -15,7 +15,8 @@
 //                "porphyroblast": true,      (optional: grows over the matrix it meets)
 //                "zoning": {"kind": "oscillatory|normal", "core": 60, "rim": 40,
 //                           "amplitude": 6, "bands": 12},          (optional; composition numbers)
-//                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8},   (optional)
+//                "twin": {"law": "albite", "lamella_mm": 0.03, "fraction": 0.8,   (optional)
+//                         "cross": {"law": "pericline", "lamella_mm": 0.03}},  (optional: tartan)
 //                "fabric": {"align": "elongation|plate_normal", "direction": [1, 0, 0],
 //                           "spread_deg": 15},  (optional: a shape-preferred orientation)
 //                "undulose": {"subgrain_mm": 0.05, "step_deg": 1.5},  (optional: bent, polygonized)
@@ -55,6 +56,10 @@ struct TwinRecipe {
   std::string law;
   double lamella_mm = 0.0;  // 0: simple twins
   double fraction = 1.0;    // of the phase's crystals
+  // "cross": {"law": "pericline", "lamella_mm": 0.03}: a second set of lamellae across the first,
+  // microcline's cross-hatched grid (section_map.h SectionGrain::CrossTwin); empty law: none.
+  std::string cross_law;
+  double cross_lamella_mm = 0.0;
 };
 
 // A preferred orientation: the habit's prism axis (lineation) or plate normal (foliation pole) of
