@@ -162,7 +162,7 @@ std::string figure_apply_note(int size, int frames, std::ostream& log) {
   // What the accessory frames keep beside the probes: the plan's fits, and 27 planes a grid point
   // (the band sums a direction, 27 floats, only while the planes are made).
   const double fits_mb = r->plan->modal_fits().size() * sizeof(ModalFit) / 1048576.0;
-  const double planes_mb = r->probes.size() * sizeof(float) / 1048576.0;
+  const double planes_mb = 27.0 * r->width * r->height * sizeof(float) / 1048576.0;  // FigureResponse::Accessory::planes
   const std::vector<AccessoryCase> c = drag_with_accessories(*r, s, frames);
   char buf[700];
   std::snprintf(buf, sizeof buf,

@@ -26,7 +26,6 @@ struct CompensatorSums {
   glm::dvec3 steady[3]{};    // Σ_bands W·w_a + M·w_a′ (C0)
   glm::dvec3 chi[3]{};       // Σ_bands w_a·osc(χ) (Cχ)
   std::vector<float> dirs;   // per plan direction (unit·dirs_per_unit + d): [φ, φ+χ, φ−χ][anchor][XYZ]
-  std::size_t bytes() const { return dirs.size() * sizeof(float); }
 };
 
 // The sums of every modal direction of `plan` at the bands of `L`, a level in a train with the
