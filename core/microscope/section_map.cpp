@@ -362,6 +362,21 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
 }
 }  // namespace
 
+// Cross-hatched lamellae pinch and swell ("spindles": Nesse 2012, microcline; unlike plagioclase's
+// lamellae of even width): each slot 2w wide across the trace holds one twin lens about its middle,
+// its half-width (w/2)·(1 + 0.8·cos(2π(u/L + φ))) along the trace coordinate u, with L = 8w and a
+// phase φ of its own. The lenses fill half the area on average, as even lamellae do.
+namespace {
+int in_spindle(const glm::dvec2& d, const glm::dvec2& normal, double w, int gi, int set) {
+  const double t = glm::dot(d, normal), u = normal.x * d.y - normal.y * d.x;
+  const double slot = std::floor(t / (2.0 * w)), tau = t - (2.0 * slot + 1.0) * w;
+  const double phase = hash01(static_cast<std::uint64_t>(gi) + 0x5B1Du, static_cast<std::uint64_t>(set),
+                              static_cast<std::uint64_t>(static_cast<std::int64_t>(slot)), 7);
+  const double half = 0.5 * w * (1.0 + 0.8 * std::cos(2.0 * kPi * (u / (8.0 * w) + phase)));
+  return std::abs(tau) < half ? 1 : 0;
+}
+}  // namespace
+
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
   const SectionGrain& g = grains[gi];
@@ -387,9 +402,10 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   int twin = 0;
   if (g.twinned) {
     const double t = glm::dot(d, g.twin_normal);
-    twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
     if (const auto& x = g.cross_twin)
-      twin |= (static_cast<int>(std::floor(glm::dot(d, x->normal) / x->lamella_mm)) & 1) << 1;
+      twin = in_spindle(d, g.twin_normal, g.lamella_mm, gi, 0) | in_spindle(d, x->normal, x->lamella_mm, gi, 1) << 1;
+    else
+      twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
   }
   int sub = 0;
   if (const int n = g.subgrain_count(); n > 1) {  // bands centred on the grain's centre; the outer two take the rest

@@ -92,7 +92,8 @@ struct SectionGrain {
   // microcline's pericline twins across its albite twins, the cross-hatched (tartan) grid
   // (Deer, Howie & Zussman 2013, alkali feldspars). Its individuals are the first set's turned by
   // `op`, the second law's twin operation: four per zone, the first set's parity in bit 0 of the
-  // twin index and this set's in bit 1. Only on a lamellar twin whose planes both show.
+  // twin index and this set's in bit 1. Only on a lamellar twin whose planes both show. Both sets'
+  // lamellae are spindles (section_map.cpp in_spindle), not the even lamellae of a single set.
   struct CrossTwin {
     std::string law;
     glm::dmat3 op{1.0};                // the twin operation, in the section frame
