@@ -32,8 +32,8 @@ bool figure_response_applies(const Scene& scene) {
 
 namespace {
 
-// The side of a flat view's canvas in view pixels: the view's circumscribed circle plus the
-// cubic's two-pixel reach each side, of the parity of the view's width (at stage 0° each view
+// The side of a flat view's canvas in view pixels: the view's circumscribed circle plus two
+// pixels each side (a turned corner pixel's sub-samples stay on it), of the parity of the view's width (at stage 0° each view
 // pixel is then k × k canvas pixels, read exactly).
 int flat_canvas_side(int width, int height) {
   int side = static_cast<int>(std::ceil(std::hypot(width, height))) + 4;
@@ -270,6 +270,56 @@ bool flat_unit_probes(const Scene& grid, FigureResponse& r, const std::atomic<bo
   return !(cancel && cancel->load());
 }
 
+// The canvas as the units its pixels' sub-samples show (FigureResponse::canvas_label). A canvas
+// pixel the plan gives one unit at full weight shows it at every sub-sample (field_view sampled it
+// at its centre or found all its sub-samples alike), one without units shows nothing; the rest
+// straddle a boundary or an opaque point, and their sub-samples are looked up again where
+// field_view took them. A section's field view numbers its units as its domains.
+void flat_canvas_labels(FigureResponse& r, const std::atomic<bool>* cancel) {
+  const EvaluationPlan& plan = *r.plan;
+  if (!plan.section()) throw std::logic_error("flat_canvas_labels: a flat view without a section");
+  const int n = std::max(1, static_cast<int>(std::lround(std::sqrt(plan.spatial_samples()))));
+  const int GW = r.width, GH = r.height, ls = n * kFlatLabelsPerSample, nn = ls * ls;
+  r.samples_per_side = n;
+  const std::vector<int>& offset = plan.pixel_offset();
+  const std::vector<PixelRef>& refs = plan.refs();
+  const float full = 1.0f - 0.5f / static_cast<float>(nn);
+  std::vector<std::size_t> mixed;
+  r.canvas_label.assign(static_cast<std::size_t>(GW) * GH, -1);
+  for (std::size_t i = 0; i < r.canvas_label.size(); ++i) {
+    const int count = offset[i + 1] - offset[i];
+    if (count == 0) continue;
+    if (count == 1 && refs[offset[i]].weight > full) {
+      r.canvas_label[i] = refs[offset[i]].unit;
+    } else {
+      r.canvas_label[i] = -2 - static_cast<int>(mixed.size());
+      mixed.push_back(i);
+    }
+  }
+  r.mixed_labels.assign(mixed.size() * nn, -1);
+  const FieldToSection to_section(plan.scene());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mixed.size(), 256), [&](const tbb::blocked_range<std::size_t>& b) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    for (std::size_t m = b.begin(); m != b.end(); ++m) {
+      const double x = static_cast<double>(mixed[m] % GW), y = static_cast<double>(mixed[m] / GW);
+      for (int sy = 0; sy < ls; ++sy)
+        for (int sx = 0; sx < ls; ++sx) {
+          const int d = plan.section()->domain_at(to_section(field_from_pixel(GW, GH, x + (sx + 0.5) / ls, y + (sy + 0.5) / ls)));
+          r.mixed_labels[m * nn + sy * ls + sx] = plan.domains()[d].opaque ? -1 : d;
+        }
+    }
+  });
+  r.canvas_uniform.assign(r.canvas_label.size(), -1);
+  for (int y = 1; y + 1 < GH; ++y)
+    for (int x = 1; x + 1 < GW; ++x) {
+      const int unit = r.canvas_label[static_cast<std::size_t>(y) * GW + x];
+      bool alike = unit >= 0;
+      for (int dy = -1; dy <= 1 && alike; ++dy)
+        for (int dx = -1; dx <= 1 && alike; ++dx) alike = r.canvas_label[static_cast<std::size_t>(y + dy) * GW + x + dx] == unit;
+      if (alike) r.canvas_uniform[static_cast<std::size_t>(y) * GW + x] = unit;
+    }
+}
+
 }  // namespace
 
 std::optional<FigureResponse> render_figure_probes(const Scene& scene, const RenderImage& own, int threads,
@@ -294,7 +344,10 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   tbb::task_arena arena(threads > 0 ? threads : static_cast<int>(tbb::task_arena::automatic));
   if (r.flat) {  // the canvas covers the view at every angle: nothing unlit, no rim to fill
     bool ok = false;
-    arena.execute([&] { ok = flat_unit_probes(grid, r, cancel); });
+    arena.execute([&] {
+      ok = flat_unit_probes(grid, r, cancel);
+      if (ok) flat_canvas_labels(r, cancel);
+    });
     if (!ok || cancelled()) return std::nullopt;
     r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
@@ -327,21 +380,19 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
 namespace {
 
 // The probes contracted with the frame's nine weights: the view at these polars, stage 0°, as
-// X, Y, Z, 0 at the grid points the frame reads (`spans`: per grid row, the columns [first, last);
-// the layout cubic::cubic4 reads). Per block, each channel is nine multiply-adds over contiguous
+// X, Y, Z, 0 at every grid point (the layout cubic::cubic4 reads). Per block, each channel is nine multiply-adds over contiguous
 // planes (they vectorise), then interleaved.
 std::vector<float> contract_grid(const FigureResponse& r, const std::array<float, 9>& w,
-                                 const std::vector<std::pair<int, int>>& spans, const std::vector<float>* extra = nullptr,
-                                 const std::array<float, 9>& we = {}) {
+                                 const std::vector<float>* extra = nullptr, const std::array<float, 9>& we = {}) {
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
   constexpr int kBlock = 2048;
   std::vector<float> grid(4 * n);
   tbb::parallel_for(tbb::blocked_range<int>(0, r.height, 4), [&](const tbb::blocked_range<int>& rows) {
     float sum[3][kBlock];
     for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = spans[y].first; x < spans[y].second; x += kBlock) {
+      for (int x = 0; x < r.width; x += kBlock) {
         const std::size_t begin = static_cast<std::size_t>(y) * r.width + x;
-        const int m = std::min(kBlock, spans[y].second - x);
+        const int m = std::min(kBlock, r.width - x);
         for (int c = 0; c < 3; ++c) {
           std::fill_n(sum[c], m, 0.0f);
           for (int k = 0; k < 9; ++k) {
@@ -492,57 +543,49 @@ std::vector<glm::vec3> frame_units(const FigureResponse& r, const InstrumentSett
   return unit_xyz;
 }
 
-// A flat view's canvas developed from the plan's units as its render would be (develop_image: each
-// point the weighted sum of its units) at the points the frame reads, in the layout contract_grid
-// gives.
-std::vector<float> develop_grid(const FigureResponse& r, const InstrumentSettings& in, const std::array<float, 9>& w,
-                                const std::vector<std::pair<int, int>>& spans) {
-  const EvaluationPlan& plan = *r.plan;
-  const std::vector<glm::vec3> unit_xyz = frame_units(r, in, w);
-  const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
-  std::vector<float> grid(4 * n);
-  const std::vector<int>& offset = plan.pixel_offset();
-  const std::vector<PixelRef>& refs = plan.refs();
-  tbb::parallel_for(tbb::blocked_range<int>(0, r.height, 4), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = spans[y].first; x < spans[y].second; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * r.width + x;
+// A flat view at the frame's units: each view pixel the mean of its (n·k)² sub-samples (n per
+// canvas pixel, k canvas pixels a view pixel), each the unit of the canvas sub-sample nearest its
+// position turned onto the canvas (FigureResponse::canvas_label). `origin`, `ex`, `ey`: view pixel
+// (px, py) lies at canvas point origin + px·ex + py·ey (canvas pixel centres at integers).
+void compose_flat(const FigureResponse& r, const std::vector<glm::vec3>& unit_xyz, const glm::dvec2& origin,
+                  const glm::dvec2& ex, const glm::dvec2& ey, const glm::mat3& to_rgb, RenderImage& img) {
+  const int W = r.image_width, H = r.image_height, n = r.samples_per_side;
+  const int ls = n * kFlatLabelsPerSample, nn = ls * ls;  // labels a canvas pixel has along each side
+  const int m = n * r.scale, fine_w = r.width * ls, fine_h = r.height * ls;
+  const float mean = 1.0f / static_cast<float>(m * m);
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<glm::dvec2> row_at(static_cast<std::size_t>(m) * m);
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      // Sub-sample (i, j) of the row's pixel x lies at row_at[j·m + i] + x·ex (linear in x).
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) row_at[j * m + i] = origin + ((i + 0.5) / m) * ex + (y + (j + 0.5) / m) * ey;
+      const glm::dvec2 centre = origin + 0.5 * ex + (y + 0.5) * ey;
+      for (int x = 0; x < W; ++x) {
         glm::vec3 v(0.0f);
-        for (int k = offset[i]; k < offset[i + 1]; ++k) v += unit_xyz[refs[k].unit] * refs[k].weight;
-        float* g = &grid[4 * i];
-        for (int c = 0; c < 3; ++c) g[c] = std::isfinite(v[c]) ? v[c] : 0.0f;
-        g[3] = 0.0f;
-      }
-  });
-  return grid;
-}
-
-// Per grid row, the columns a frame's cubic reads: a figure reads its whole grid; a flat view the
-// turned image's rectangle on its canvas, widened by the taps' reach (3 cells). The rectangle is
-// convex, so its extent over a band of rows is reached at its edges clipped to the band.
-std::vector<std::pair<int, int>> read_spans(const FigureResponse& r, const std::array<glm::dvec2, 4>& corners) {
-  std::vector<std::pair<int, int>> spans(r.height, {0, r.width});
-  if (!r.flat) return spans;
-  constexpr double kReach = 3.0;
-  for (int y = 0; y < r.height; ++y) {
-    const double lo = y - kReach, hi = y + kReach;
-    double x_min = INFINITY, x_max = -INFINITY;
-    for (int e = 0; e < 4; ++e) {
-      const glm::dvec2 a = corners[e], b = corners[(e + 1) % 4];
-      const double y0 = std::max(lo, std::min(a.y, b.y)), y1 = std::min(hi, std::max(a.y, b.y));
-      if (y0 > y1) continue;
-      for (const double yy : {y0, y1}) {
-        const double t = b.y != a.y ? (yy - a.y) / (b.y - a.y) : 0.0;
-        const double x = a.x + t * (b.x - a.x);
-        x_min = std::min({x_min, x, b.y != a.y ? x : b.x});
-        x_max = std::max({x_max, x, b.y != a.y ? x : b.x});
+        const int cx = static_cast<int>(std::lround(centre.x + x * ex.x)), cy = static_cast<int>(std::lround(centre.y + x * ex.y));
+        const int uniform = r.scale == 1 && cx >= 0 && cy >= 0 && cx < r.width && cy < r.height
+                                ? r.canvas_uniform[static_cast<std::size_t>(cy) * r.width + cx]
+                                : -1;
+        if (uniform >= 0) v = unit_xyz[uniform] * static_cast<float>(m * m);
+        for (std::size_t s = 0; uniform < 0 && s < row_at.size(); ++s) {
+          const glm::dvec2& at = row_at[s];
+          // The nearest canvas sub-sample: canvas pixel c's sub-sample s sits at c − ½ + (s + ½)/n.
+          const int fx = std::clamp(static_cast<int>(std::floor((at.x + x * ex.x + 0.5) * ls)), 0, fine_w - 1);
+          const int fy = std::clamp(static_cast<int>(std::floor((at.y + x * ex.y + 0.5) * ls)), 0, fine_h - 1);
+          int unit = r.canvas_label[static_cast<std::size_t>(fy / ls) * r.width + fx / ls];
+          if (unit <= -2) unit = r.mixed_labels[static_cast<std::size_t>(-2 - unit) * nn + (fy % ls) * ls + fx % ls];
+          if (unit >= 0) v += unit_xyz[unit];
+        }
+        v *= mean;
+        const std::size_t o = static_cast<std::size_t>(y) * W + x;
+        const glm::vec3 rgb = r.monochromatic ? glm::vec3(v.y) : to_rgb * v;
+        for (int ch = 0; ch < 3; ++ch) {
+          img.xyz[3 * o + ch] = std::isfinite(v[ch]) ? v[ch] : 0.0f;
+          img.rgb[3 * o + ch] = std::isfinite(rgb[ch]) ? rgb[ch] : 0.0f;
+        }
       }
     }
-    spans[y] = x_min > x_max ? std::pair{0, 0}
-                             : std::pair{std::clamp(static_cast<int>(std::floor(x_min - kReach)), 0, r.width),
-                                         std::clamp(static_cast<int>(std::ceil(x_max + kReach)) + 1, 0, r.width)};
-  }
-  return spans;
+  });
 }
 
 }  // namespace
@@ -564,16 +607,24 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
     return glm::dvec2(g.x * half + 0.5 * GW - 0.5, 0.5 * GH - g.y * half - 0.5);
   };
   const glm::dvec2 origin = to_grid(0, 0), ex = to_grid(1, 0) - origin, ey = to_grid(0, 1) - origin;
-  // The view at these settings, stage 0°, where the frame reads it; then read turned by the stage.
-  const std::vector<std::pair<int, int>> spans =
-      read_spans(r, {to_grid(0, 0), to_grid(W, 0), to_grid(W, H), to_grid(0, H)});
   const bool accessory = in.compensator != Compensator::None;
   if ((r.flat || accessory) && !r.plan)
     throw std::logic_error("compose_figure: an accessory in a figure with ghost light (it is rendered per setting)");
-  std::vector<float> grid;
+  const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
+  RenderImage img = r.progress;
+  img.width = W;
+  img.height = H;
+  img.rgb.resize(n * 3);
+  img.xyz.resize(n * 3);
+  glm::mat3 to_rgb;  // XYZ → linear sRGB, in float (columns: the images of X, Y, Z)
+  for (int k = 0; k < 3; ++k) to_rgb[k] = glm::vec3(xyz_to_linear_srgb(glm::dvec3(k == 0, k == 1, k == 2)));
   if (r.flat) {
-    grid = develop_grid(r, in, w, spans);
-  } else if (accessory) {
+    compose_flat(r, frame_units(r, in, w), origin, ex, ey, to_rgb, img);
+    return img;
+  }
+  // The figure at these settings, stage 0°; then read turned by the stage.
+  std::vector<float> grid;
+  if (accessory) {
     // The analyzer through the accessory (the header); with the analyzer out the accessory
     // changes nothing (a retarder before an intensity).
     const std::shared_ptr<const FigureResponse::Accessory> acc = accessory_of(r, in);
@@ -588,47 +639,30 @@ RenderImage compose_figure(const FigureResponse& r, const InstrumentSettings& in
           we[3 * i + j] = static_cast<float>(v[i] * c[j]);
         }
     }
-    grid = contract_grid(r, wa, spans, &acc->planes, we);
+    grid = contract_grid(r, wa, &acc->planes, we);
   } else {
-    grid = contract_grid(r, w, spans);
+    grid = contract_grid(r, w);
   }
-  const std::size_t n = static_cast<std::size_t>(W) * H, grid_n = static_cast<std::size_t>(GW) * GH;
-  RenderImage img = r.progress;
-  img.width = W;
-  img.height = H;
-  img.rgb.resize(n * 3);
-  img.xyz.resize(n * 3);
-  glm::mat3 to_rgb;  // XYZ → linear sRGB, in float (columns: the images of X, Y, Z)
-  for (int k = 0; k < 3; ++k) to_rgb[k] = glm::vec3(xyz_to_linear_srgb(glm::dvec3(k == 0, k == 1, k == 2)));
-  const int k = r.scale;  // k × k readings a pixel, at the centres of its k × k canvas cells at stage 0°
-  const float box = 1.0f / static_cast<float>(k * k);
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
-      // Grid coordinates of the row's readings at x = 0, one per cell of a k × k pixel (linear in x).
-      glm::dvec2 row_at[kMaxFlatCanvasScale * kMaxFlatCanvasScale];
-      for (int j = 0; j < k; ++j)
-        for (int i = 0; i < k; ++i) row_at[j * k + i] = origin + ((i + 0.5) / k) * ex + (y + (j + 0.5) / k) * ey;
+      const glm::dvec2 row_at = origin + 0.5 * ex + (y + 0.5) * ey;  // the row's pixel centres, linear in x
       for (int x4 = 0; x4 < W; x4 += 4) {
         // Four pixels at a time (the last group repeats the row's last pixel).
-        glm::vec3 sum[4]{};
         double gx[4], gy[4];
-        for (int cell = 0; cell < k * k; ++cell) {
-          for (int p = 0; p < 4; ++p) {
-            const int x = std::min(x4 + p, W - 1);
-            gx[p] = row_at[cell].x + x * ex.x;
-            gy[p] = row_at[cell].y + x * ex.y;
-          }
-          cubic::v4 read[4];
-          cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
-          // No negative light from the cubic's overshoot at an isogyre's or a boundary's edge.
-          for (int p = 0; p < 4; ++p) sum[p] += glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
+        for (int p = 0; p < 4; ++p) {
+          const int x = std::min(x4 + p, W - 1);
+          gx[p] = row_at.x + x * ex.x;
+          gy[p] = row_at.y + x * ex.y;
         }
+        cubic::v4 read[4];
+        cubic::cubic4(grid.data(), GW, GH, cubic::cells(gx, gy, GW, GH, GW - 1, GH - 1), read);
         for (int p = 0; p < 4 && x4 + p < W; ++p) {
           const std::size_t o = static_cast<std::size_t>(y) * W + x4 + p;
           glm::vec3 v(0.0f);
           if (r.lit.empty() || r.lit[o]) {
-            v = sum[p] * box;
-          } else if (!r.outside.empty()) {  // a figure (k = 1): gx, gy are the pixel's centre
+            // No negative light from the cubic's overshoot at an isogyre's edge.
+            v = glm::max(glm::vec3(read[p][0], read[p][1], read[p][2]), glm::vec3(0.0f));
+          } else if (!r.outside.empty()) {  // light outside the disc, nearest
             const int sx = static_cast<int>(std::lround(gx[p])), sy = static_cast<int>(std::lround(gy[p]));
             if (sx >= 0 && sy >= 0 && sx < GW && sy < GH) {
               const std::size_t q = static_cast<std::size_t>(sy) * GW + sx;

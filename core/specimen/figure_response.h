@@ -55,9 +55,14 @@
 // turned out of it. With an accessory in the slot the frame evaluates every unit in its own train
 // turned into the specimen's frame (train_in_specimen_frame: polars and slot at −θ) instead —
 // exact at every accessory, wedge position and polar setting, for the units' band sums each frame.
-// A small view's canvas is finer than its pixels (flat_canvas_scale): a frame box-filters k × k
-// canvas readings over each view pixel, so the grain boundaries a pixel straddles are read as its
-// area, not as the cubic's blend of two neighbours' partial pixels.
+// A frame does not interpolate the canvas's colours (a cubic's blend of the partial pixels on
+// either side of a grain boundary blurs it by a pixel: ΔE00 1.1–1.65 from a fresh render at 512²
+// between crossed polars and with the gypsum plate). It samples each view pixel as a fresh render
+// does, n × n sub-samples, each showing the unit of the canvas sub-sample nearest its turned
+// position (canvas_label), and develops the pixel from its units; at stage 0° those are the
+// canvas's own sub-samples, so the view is the canvas render's. A small view's canvas is finer
+// than its pixels (flat_canvas_scale): its pixel takes (n·k)² sub-samples, its k × k canvas
+// pixels' at stage 0°.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -80,17 +85,17 @@ inline constexpr double kFigureProbeDeg[3] = {0.0, 45.0, 90.0};
 // Whether a scene's view is a conoscopic figure the response serves: Bertrand lens in,
 // conoscopic mode, and no accessory in the slot or no ghost light (optics.lens_depth < 2).
 bool figure_response_applies(const Scene& scene);
-// A flat view's canvas plan holds each canvas pixel's unit references (~16 B) and a frame develops
-// a 4-float grid (16 B), on a canvas of about twice the view's pixels: 1536² canvas pixels (a view
-// up to ~1080², ~75 MB) is where a view is rendered per setting instead (the app's views are
+// A flat view's canvas plan holds each canvas pixel's unit references (~16 B) and its labels (8 B,
+// and 144 B for a pixel across a boundary), on a canvas of about twice the view's pixels: 1536²
+// canvas pixels (a view up to ~1080², ~100 MB) is where a view is rendered per setting instead (the app's views are
 // 512–1024²; a 2048² view's canvas would be 8.4 M pixels).
 inline constexpr long long kMaxFlatCanvasPixels = 1536LL * 1536LL;
 // A flat canvas narrower than kFlatCanvasMinSide view pixels is rendered k ≤ kMaxFlatCanvasScale
 // times finer: at 32² (canvas 50 px) a granite view's pixel straddles a grain boundary in one
-// pixel of three, and composing from view-pitch probes read those 0.7 ΔE00 further from a converged
-// reference than a fresh render (2.07 against 1.41); a 4×-finer canvas box-filtered over each
-// pixel is 1.14 (docs/response.md), costs 16× a tiny canvas's probes, and nothing at the app's
-// 512–1024² views (k = 1).
+// pixel of three, and composing from view-pitch probes (read by a cubic then) was 0.7 ΔE00 further
+// from a converged reference than a fresh render (2.07 against 1.41); a 4×-finer canvas, its
+// (n·k)² sub-samples a view pixel, is 1.28 (docs/response.md), costs 16× a tiny canvas's probes,
+// and nothing at the app's 512–1024² views (k = 1).
 inline constexpr int kFlatCanvasMinSide = 256;
 inline constexpr int kMaxFlatCanvasScale = 4;
 // Canvas pixels per view pixel along each axis for a flat view of width × height.
@@ -102,6 +107,13 @@ int flat_canvas_scale(int width, int height);
 // another wedge) in the orthoscope, Bertrand lens out, its canvas within kMaxFlatCanvasPixels and
 // the field-number limit. Any accessory: frames with one are composed from the canvas's plan.
 bool flat_response_applies(const Scene& scene);
+
+// A flat canvas pixel across a boundary keeps its units on a grid kFlatLabelsPerSample times finer
+// than its n × n sub-samples (odd: at stage 0° a view sub-sample sits on the centre of a label
+// cell, the canvas's own sub-sample). A turned view sub-sample reads the nearest label, at most
+// 1/(2·3n) of a pixel from where a fresh render samples: 3× fewer boundary sub-samples read across
+// a boundary than labels at the sub-samples alone.
+inline constexpr int kFlatLabelsPerSample = 3;
 
 struct FigureResponse {
   int width = 0, height = 0;  // the probes' grid (a flat view's canvas)
@@ -117,6 +129,18 @@ struct FigureResponse {
   std::vector<float> probes;
   // A flat view's probes per unit of `plan`: 27 floats a unit, 3·(3·i + j) + c as above.
   std::vector<float> unit_probes;
+  // A flat view's canvas as the units its sub-samples show (n × n a canvas pixel, n =
+  // samples_per_side, where the canvas's field_view took them): per canvas pixel the unit all its
+  // sub-samples show, -1 when none passes light, or -2 - i for a pixel across a boundary, whose n²
+  // sub-samples' units (-1: no light) are mixed_labels[n²·i …], row by row. A frame reads each view
+  // pixel's (n · scale)² sub-samples, turned, from the nearest canvas sub-sample.
+  std::vector<int> canvas_label;
+  std::vector<int> mixed_labels;
+  // Per canvas pixel the unit it and its eight neighbours show alone, else -1: a view pixel (scale
+  // 1) whose centre falls in such a pixel shows that unit at every sub-sample (they lie within
+  // 1.5 canvas pixels of it), one reading instead of n².
+  std::vector<int> canvas_uniform;
+  int samples_per_side = 1;
   std::vector<unsigned char> lit;  // the figure's disc (rotation-invariant) on the image; empty: all lit
   // Light outside the disc (a physical lens' ghosts can land there): those pixels' raw probes,
   // read nearest-neighbour (the same planes); empty when there is none.
