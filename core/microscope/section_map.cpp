@@ -342,17 +342,25 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
       // of s, so two fixed-point steps from p's turn settle it.
       const double u = (site + (1.0 - 2.0 * half_l) * (hash01(hg, ht, hs, 1) - 0.5)) * in.spacing_mm;
       const double v = (trail + (1.0 - 2.0 * half_w) * (hash01(hg, ht, hs, 2) - 0.5)) * in.trail_spacing_mm;
-      double a = ap, sc = sp;
-      glm::dvec2 c;
-      for (int k = 0; k < 2; ++k) {
-        c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
+      // Without a turn (rotation 0: sericite, perthite, fluid trails) the frame is p's own and
+      // the centre's growth fraction matters only against a finite `within`: the same numbers
+      // as the fixed point, without its gauges and sines.
+      double a = ap, sc = sp, ca = cp, sa = spn;
+      glm::dvec2 c{ca * u - sa * v, sa * u + ca * v};
+      if (in.rotation_rad != 0.0) {
+        for (int k = 0; k < 2; ++k) {
+          c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
+          sc = grain_growth_fraction(g, g.centre_mm + c);
+          a = turn(sc);
+        }
+        ca = std::cos(a);
+        sa = std::sin(a);
+        c = {ca * u - sa * v, sa * u + ca * v};
+      } else if (std::isfinite(within)) {
         sc = grain_growth_fraction(g, g.centre_mm + c);
-        a = turn(sc);
       }
-      c = {std::cos(a) * u - std::sin(a) * v, std::sin(a) * u + std::cos(a) * v};
       if (!(sc <= within)) continue;
       const glm::dvec2 e = d - c;
-      const double ca = std::cos(a), sa = std::sin(a);
       const double eu = (ca * e.x + sa * e.y) / (0.5 * in.size_mm), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
       if (eu * eu + ev * ev > 1.0) continue;
       const auto n = static_cast<int>(in.orientations.size());
