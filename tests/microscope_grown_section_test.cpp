@@ -533,14 +533,20 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
       if (g.mineral.rfind("plagioclase", 0) == 0) {
         ASSERT_TRUE(g.growth.has_value());
         const double s = growth_fraction(*g.growth, p);
-        if (inclusion) ASSERT_EQ(included, "muscovite") << g.mineral;
+        if (inclusion) {
+          ASSERT_EQ(included, "muscovite") << g.mineral;
+        }
         if (s <= 0.5) ++plag_core, sericite_core += inclusion;
         if (s > 0.7) ++plag_rim, sericite_rim += inclusion;
       } else if (g.mineral == "microcline") {
-        if (inclusion) ASSERT_EQ(included, "plagioclase:An5");
+        if (inclusion) {
+          ASSERT_EQ(included, "plagioclase:An5");
+        }
         ++kfs, albite += inclusion;
       } else if (g.mineral == "biotite") {
-        if (inclusion) ASSERT_EQ(included, "zircon");
+        if (inclusion) {
+          ASSERT_EQ(included, "zircon");
+        }
         ++bt, zircon += inclusion;
       } else {
         ASSERT_FALSE(inclusion) << g.mineral << " has inclusions the recipe does not give it";

@@ -179,9 +179,10 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   }
   if (!g.subgrain_rotation.empty()) r.subgrains = subgrain_report(g);
   if (g.twinned) {
-    r.twin = GrainTwinReport{
-        g.twin_law, extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm),
-                                      scene.polarizer_deg)};
+    r.twin = GrainTwinReport{};
+    r.twin->law = g.twin_law;
+    r.twin->extinction_stage_deg =
+        extinction_stages(optics_of(g, g.twin_orientation, kGrainReportIndexWavelengthNm), scene.polarizer_deg);
     if (const auto& x = g.cross_twin) {
       r.twin->cross_law = x->law;
       r.twin->cross_extinction_stage_deg =

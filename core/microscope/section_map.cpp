@@ -368,18 +368,21 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
     }
   return -1;
 }
-}  // namespace
+
+// A lamella index as an integer for parities and hashes. Past 2⁵² lamellae (a width of 10⁻¹⁵ of
+// the section, which no reader forbids) a double holds no parity; 0 there instead of an overflowing
+// cast.
+std::int64_t lamella_index(double k) { return std::abs(k) < 0x1p52 ? static_cast<std::int64_t>(k) : 0; }
 
 // Cross-hatched lamellae pinch and swell ("spindles": Nesse 2012, microcline; unlike plagioclase's
 // lamellae of even width): each slot 2w wide across the trace holds one twin lens about its middle,
 // its half-width (w/2)·(1 + 0.8·cos(2π(u/L + φ))) along the trace coordinate u, with L = 8w and a
 // phase φ of its own. The lenses fill half the area on average, as even lamellae do.
-namespace {
 int in_spindle(const glm::dvec2& d, const glm::dvec2& normal, double w, int gi, int set) {
   const double t = glm::dot(d, normal), u = normal.x * d.y - normal.y * d.x;
   const double slot = std::floor(t / (2.0 * w)), tau = t - (2.0 * slot + 1.0) * w;
   const double phase = hash01(static_cast<std::uint64_t>(gi) + 0x5B1Du, static_cast<std::uint64_t>(set),
-                              static_cast<std::uint64_t>(static_cast<std::int64_t>(slot)), 7);
+                              static_cast<std::uint64_t>(lamella_index(slot)), 7);
   const double half = 0.5 * w * (1.0 + 0.8 * std::cos(2.0 * kPi * (u / (8.0 * w) + phase)));
   return std::abs(tau) < half ? 1 : 0;
 }
@@ -413,7 +416,7 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
     if (const auto& x = g.cross_twin)
       twin = in_spindle(d, g.twin_normal, g.lamella_mm, gi, 0) | in_spindle(d, x->normal, x->lamella_mm, gi, 1) << 1;
     else
-      twin = g.lamella_mm > 0.0 ? (static_cast<int>(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
+      twin = g.lamella_mm > 0.0 ? static_cast<int>(lamella_index(std::floor(t / g.lamella_mm)) & 1) : (t < 0.0 ? 1 : 0);
   }
   int sub = 0;
   if (const int n = g.subgrain_count(); n > 1) {  // bands centred on the grain's centre; the outer two take the rest
