@@ -364,7 +364,6 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
   bool kept = false;
   arena.execute([&] { kept = keep_figure_plan(grid, r, cancel); });
   if (!kept || cancelled()) return std::nullopt;
-  if (r.plan && !r.plan->ghost_xyz().empty()) r.plan = nullptr, r.level = nullptr;
   r.lit = figure_disc(scene);
   bool light_outside = false;
   for (std::size_t p = 0; p < n && !light_outside; ++p)
