@@ -34,3 +34,10 @@ for rock in granite andesite amphibolite quartzite marble sandstone peridotite g
       --set stage.x_mm="$x" --set stage.y_mm="$y" --out "$root/docs/images/rock_${rock}_40x${suffix}.png"
   done
 done
+# A pleochroic halo in the grown granite's biotite: a zircon at -1.448, -0.854 mm in plane light at
+# 40x, the stage at 0 and 90 degrees (the halo darkest with the biotite's cleavage along the polarizer).
+for stage in 0 90; do
+  "$render" "$scene" --set sample.section=granite --set render.width=320 --set render.height=240 --scale-bar \
+    --set objective.magnification=40 --set objective.na=0.65 --set stage.x_mm=-1.448 --set stage.y_mm=-0.854 \
+    --set analyzer=out --set stage_deg="$stage" --out "$root/docs/images/granite_halo_40x_plane_stage${stage}.png"
+done

@@ -516,11 +516,12 @@ TEST(GrownSection, SandstoneQuartzHoldsFluidInclusionsAndItsFeldsparsSericite) {
 // The shipped granite (assets/rocks/granite.json) shows what identifies a granite beyond its
 // mode: plagioclase clouded by sericite in its calcic cores only (Nesse 2012: the cores of zoned
 // crystals alter first), microcline perthite (albite strings in the K-feldspar), and zircon
-// inclusions in biotite. Over a 10 × 7.5 mm window on a 10 µm grid: each inclusion domain is its
+// inclusions in biotite, each in its pleochroic halo. Over a 10 × 7.5 mm window on a 10 µm grid: each inclusion domain is its
 // host's recipe mineral, and a point's place in its crystal is its growth fraction s.
 TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotite) {
   const auto m = load_section("granite");
-  long plag_core = 0, sericite_core = 0, plag_rim = 0, sericite_rim = 0, kfs = 0, albite = 0, bt = 0, zircon = 0;
+  long plag_core = 0, sericite_core = 0, plag_rim = 0, sericite_rim = 0, kfs = 0, albite = 0, bt = 0, zircon = 0,
+       halo = 0;
   for (double y = -3.75; y < 3.75; y += 0.01)
     for (double x = -5.0; x < 5.0; x += 0.01) {
       const glm::dvec2 p{x, y};
@@ -547,17 +548,18 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
         if (inclusion) {
           ASSERT_EQ(included, "zircon");
         }
-        ++bt, zircon += inclusion;
+        ++bt, zircon += inclusion, halo += part.halo;
       } else {
         ASSERT_FALSE(inclusion) << g.mineral << " has inclusions the recipe does not give it";
+        ASSERT_FALSE(part.halo) << g.mineral << " has haloes the recipe does not give it";
       }
     }
   const double sericite = 0.5 * 0.25 * M_PI * 0.02 * 0.005 / (0.03 * 0.025);  // f·(π/4)·l·w/(s·t), the recipe's
   const double perthite = 0.6 * 0.25 * M_PI * 0.15 * 0.015 / (0.17 * 0.045);
   const double fc = double(sericite_core) / double(plag_core), fk = double(albite) / double(kfs);
   std::printf("plagioclase cores %ld points, sericite %.4f (recipe %.4f); rims %ld points, sericite %ld; "
-              "microcline %ld points, albite %.4f (recipe %.4f); biotite %ld points, zircon %ld\n",
-              plag_core, fc, sericite, plag_rim, sericite_rim, kfs, fk, perthite, bt, zircon);
+              "microcline %ld points, albite %.4f (recipe %.4f); biotite %ld points, zircon %ld, haloes %ld\n",
+              plag_core, fc, sericite, plag_rim, sericite_rim, kfs, fk, perthite, bt, zircon, halo);
   ASSERT_GT(plag_core, 5000);
   ASSERT_GT(plag_rim, 20000);
   ASSERT_GT(kfs, 100000);
@@ -577,6 +579,12 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
   // Zircon: 0.35 of sites 400 × 350 µm apart, each 30 × 15 µm (~4.5 grid points): about 8.8·10⁻⁴
   // of the biotite, a few dozen points here. Present, and nowhere but in biotite (above).
   EXPECT_GT(zircon, 0);
+  // Each zircon in its pleochroic halo, a disc 50 µm about its centre less the zircon: (π·0.05² −
+  // π·0.015·0.0075)/(π·0.015·0.0075) ≈ 21 times the zircon's area, less where a halo is cut by its
+  // flake's outline, a chlorite seam or a crack (the halo test in
+  // microscope_section_inclusions_test checks its geometry). Between 10 and 22 times.
+  EXPECT_GT(halo, 10 * zircon);
+  EXPECT_LT(halo, 22 * zircon);
   // Microcline's tartan: albite lamellae crossed by pericline lamellae, in the grains cut with both
   // composition planes steep (SectionGeometry.MicroclineCrossHatchIsAGridOfFourIndividuals tests
   // the grid itself); only microcline carries a cross set.

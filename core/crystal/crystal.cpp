@@ -103,6 +103,14 @@ void Crystal::set_absorption(AbsorptionTable x, AbsorptionTable y, AbsorptionTab
   absorbing_ = !(absorption_[0].empty() && absorption_[1].empty() && absorption_[2].empty());
 }
 
+Crystal Crystal::with_absorption_scaled(double factor, std::string name) const {
+  Crystal c = *this;
+  c.name_ = std::move(name);
+  for (AbsorptionTable& t : c.absorption_)
+    for (double& mu : t.mu_per_um) mu *= factor;
+  return c;
+}
+
 void Crystal::set_rotatory_power(RotatoryDispersion rho) {
   rotatory_ = rho;
   optically_active_ = rho.A_rad_um != 0.0;

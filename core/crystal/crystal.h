@@ -84,6 +84,10 @@ class Crystal {
                       IndexDispersion z, std::string source);
   void set_absorption(AbsorptionTable x, AbsorptionTable y, AbsorptionTable z);
   void set_rotatory_power(RotatoryDispersion rho);
+  // The same crystal with every absorption coefficient μ times `factor` (its optical density, so
+  // its transmittance raised to that power): radiation damage darkening a host round a radioactive
+  // inclusion (a pleochroic halo), named `name`.
+  Crystal with_absorption_scaled(double factor, std::string name) const;
 
  private:
   glm::dvec3 dispersive_indices(double wavelength_nm) const;

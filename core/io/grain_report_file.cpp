@@ -30,12 +30,15 @@ json grain_report_json(const GrainReport& r) {
       j["twin"]["cross"] = {{"law", r.twin->cross_law}, {"extinction_stage_deg", r.twin->cross_extinction_stage_deg}};
   }
   if (r.alteration) j["alteration"] = {{"mineral", r.alteration->mineral}, {"vein_mm", r.alteration->vein_mm}};
-  if (const auto& in = r.inclusions)
+  if (const auto& in = r.inclusions) {
     j["inclusions"] = {{"mineral", in->mineral},
                        {"size_mm", in->size_mm},
                        {"rim_trail_deg", in->rim_trail_deg},
                        {"core_trail_deg", in->core_trail_deg},
                        {"rotation_deg", in->rotation_deg}};
+    if (in->halo_radius_mm > 0.0)
+      j["inclusions"]["halo"] = {{"radius_mm", in->halo_radius_mm}, {"darkening", in->halo_darkening}};
+  }
   if (r.subgrains)
     j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
                       {"step_deg", r.subgrains->step_deg},

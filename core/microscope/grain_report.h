@@ -59,6 +59,9 @@ struct GrainInclusionReport {
   std::string mineral;
   double size_mm = 0.0;
   double rim_trail_deg = 0.0, core_trail_deg = 0.0, rotation_deg = 0.0;
+  // Each inclusion's pleochroic halo (SectionGrain::InclusionSet::Halo): its radius from the
+  // inclusion's centre and the host's absorption factor there; 0 and 1 without one.
+  double halo_radius_mm = 0.0, halo_darkening = 1.0;
 };
 
 struct GrainReport {

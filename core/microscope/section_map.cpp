@@ -74,12 +74,16 @@ DomainPart SectionMap::domain_part(int d) const {
   if (d < 2 || domain_grain_[d] < 0) return part;
   part.grain = domain_grain_[d];
   const SectionGrain& g = grains[part.grain];
-  const int per_twin = g.twin_individuals(), subgrains = g.subgrain_count(), k = d - g.first_domain;
+  const int per_twin = g.twin_individuals(), subgrains = g.subgrain_count();
+  int k = d - g.first_domain;
   if (g.vein && k == g.crystal_domain_count()) {
     part.vein = true;
     return part;
   }
-  if (d >= g.first_inclusion_domain()) {
+  if (g.has_halo() && d >= g.first_halo_domain()) {
+    part.halo = true;
+    k = d - g.first_halo_domain();
+  } else if (d >= g.first_inclusion_domain()) {
     part.inclusion = d - g.first_inclusion_domain();
     return part;
   }
@@ -94,6 +98,7 @@ const Crystal* SectionMap::crystal_of_domain(int d) const {
   if (part.grain < 0) return nullptr;
   const SectionGrain& g = grains[part.grain];
   if (part.inclusion >= 0) return g.inclusions->crystal;
+  if (part.halo) return g.inclusions->halo->zone_crystals[static_cast<std::size_t>(part.zone)].get();
   return part.vein ? g.vein->crystal : g.zones[part.zone].crystal;
 }
 
@@ -133,6 +138,11 @@ void SectionMap::finish() {
     if (g.inclusions)
       for (const glm::dmat3& o : g.inclusions->orientations) {
         domain_orientation_.push_back(o);
+        domain_grain_.push_back(static_cast<int>(i));
+      }
+    if (g.has_halo())
+      for (int k = 0; k < g.crystal_domain_count(); ++k) {
+        domain_orientation_.push_back(domain_orientation_[static_cast<std::size_t>(g.first_domain + k)]);
         domain_grain_.push_back(static_cast<int>(i));
       }
   }
@@ -317,14 +327,21 @@ double grain_growth_fraction(const SectionGrain& g, const glm::dvec2& p) {
   return g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
 }
 
+// inclusion_at's answer for a point of the host inside an inclusion's halo.
+constexpr int kInHalo = -2;
+
 int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
   const SectionGrain::InclusionSet& in = *g.inclusions;
+  // A halo reaches radius_mm from its inclusion's centre, which lies in the point's cell or one
+  // of its eight neighbours: the reader keeps radius_mm within both spacings.
+  const double halo_r = in.halo ? in.halo->radius_mm : 0.0;
+  bool in_halo = false;
   const auto turn = [&](double s) { return in.trail_rad + in.rotation_rad * (1.0 - std::min(s, 1.0)); };
   // within ≥ 1 is the whole grain: the gaps it filled after its faces stopped (s > 1: a crystal of
   // a holocrystalline rock takes the space no face reached, grown_tiling.h) hold inclusions too.
   const double within = in.within >= 1.0 ? std::numeric_limits<double>::infinity() : in.within;
   const double sp = grain_growth_fraction(g, p);
-  if (!(sp <= within + in.size_mm / std::max(g.semi_minor_mm, 1e-9))) return -1;
+  if (!(sp <= within + (in.size_mm + 2.0 * halo_r) / std::max(g.semi_minor_mm, 1e-9))) return -1;
   const glm::dvec2 d = p - g.centre_mm;
   const double ap = turn(sp), cp = std::cos(ap), spn = std::sin(ap);
   const double site0 = std::floor((cp * d.x + spn * d.y) / in.spacing_mm + 0.5);
@@ -362,11 +379,14 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
       if (!(sc <= within)) continue;
       const glm::dvec2 e = d - c;
       const double eu = (ca * e.x + sa * e.y) / (0.5 * in.size_mm), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
-      if (eu * eu + ev * ev > 1.0) continue;
+      if (eu * eu + ev * ev > 1.0) {
+        in_halo = in_halo || glm::dot(e, e) <= halo_r * halo_r;
+        continue;
+      }
       const auto n = static_cast<int>(in.orientations.size());
       return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
     }
-  return -1;
+  return in_halo ? kInHalo : -1;
 }
 
 // A lamella index as an integer for parities and hashes. Past 2⁵² lamellae (a width of 10⁻¹⁵ of
@@ -391,8 +411,12 @@ int in_spindle(const glm::dvec2& d, const glm::dvec2& normal, double w, int gi, 
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
   const SectionGrain& g = grains[gi];
-  if (g.inclusions)
-    if (const int k = inclusion_at(g, gi, p); k >= 0) return g.first_inclusion_domain() + k;
+  int halo_offset = 0;  // to the host's darkened domain, in an inclusion's halo
+  if (g.inclusions) {
+    const int k = inclusion_at(g, gi, p);
+    if (k >= 0) return g.first_inclusion_domain() + k;
+    if (k == kInHalo) halo_offset = g.first_halo_domain() - g.first_domain;
+  }
   const glm::dvec2 d = p - g.centre_mm;
   int zone = static_cast<int>(g.zones.size()) - 1;
   if (zone > 0 && g.growth) {
@@ -424,7 +448,7 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
     const double band = std::round(glm::dot(d, g.subgrain_normal) / g.subgrain_mm);
     sub = half + static_cast<int>(std::clamp(band, -double(half), double(half)));
   }
-  return g.first_domain + (zone * g.twin_individuals() + twin) * g.subgrain_count() + sub;
+  return g.first_domain + halo_offset + (zone * g.twin_individuals() + twin) * g.subgrain_count() + sub;
 }
 
 int DomainRaster::domain_at(const glm::dvec2& p, int outside) const {
@@ -821,7 +845,7 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
   const auto a = gr.optional_object("inclusions");
   if (!a) return;
   a->warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "trail_deg", "rotation_deg",
-                        "fraction", "within", "euler_deg"});
+                        "fraction", "within", "euler_deg", "halo"});
   using L = InclusionRecipe;  // the limits a recipe's inclusions meet too (rock_recipe.h)
   SectionGrain::InclusionSet in;
   in.mineral = a->require<std::string>("mineral");
@@ -848,7 +872,27 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
     in.orientations.push_back(
         indicatrix_in_section(mc, crystal_to_sample_from_bunge({radians(v[0]), radians(v[1]), radians(v[2])})));
   }
+  if (const auto h = a->optional_object("halo")) {
+    const HaloRecipe halo = read_halo(*h, in.size_mm, in.spacing_mm, in.trail_spacing_mm);
+    in.halo = SectionGrain::InclusionSet::Halo{halo.radius_mm, halo.darkening, {}};
+  }
   g.inclusions = std::move(in);
+}
+
+// A halo's darkened crystals, one per zone (after the zones are read): a host that absorbs no
+// light has nothing to darken, and its halo would not show.
+void darken_halo(const JsonReader& gr, SectionGrain& g) {
+  if (!g.has_halo()) return;
+  SectionGrain::InclusionSet::Halo& h = *g.inclusions->halo;
+  bool absorbing = false;
+  for (const SectionZone& z : g.zones) {
+    absorbing = absorbing || z.crystal->absorbing();
+    h.zone_crystals.push_back(std::make_shared<const Crystal>(
+        z.crystal->with_absorption_scaled(h.darkening, z.crystal->name() + " (pleochroic halo)")));
+  }
+  if (!absorbing)
+    gr.object("inclusions").fail("halo", "a pleochroic halo darkens its host's absorption, and " + g.mineral +
+                                             " has no absorption data: it would not show");
 }
 
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
@@ -929,6 +973,7 @@ SectionGrain read_section_grain(const JsonReader& gr, const SectionMap& m, Grain
   if (!g.matrix) read_vein(gr, g);
   if (!g.matrix) read_inclusions(gr, g);
   if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
+  darken_halo(gr, g);
   return g;
 }
 

@@ -156,14 +156,28 @@ struct SectionGrain {
     std::vector<glm::dmat3> orientations;  // indicatrix columns in the section frame
     double size_mm = 0.0, width_mm = 0.0, spacing_mm = 0.0, trail_spacing_mm = 0.0;
     double fraction = 1.0, within = 1.0, trail_rad = 0.0, rotation_rad = 0.0;
+    // A pleochroic halo ("halo" in a section file): the host within radius_mm of an inclusion's
+    // centre, radiation-damaged by the alpha particles of its uranium and thorium, absorbs
+    // `darkening` times as strongly (its optical density; its own orientation and indices). One
+    // darkened crystal per zone.
+    struct Halo {
+      double radius_mm = 0.0, darkening = 1.0;
+      std::vector<std::shared_ptr<const Crystal>> zone_crystals;
+    };
+    std::optional<Halo> halo;
   };
   std::optional<InclusionSet> inclusions;
   // Domains first_domain … first_domain + crystal_domain_count() − 1, in the order zone, twin
   // individual, subgrain (the last varying fastest); then the vein's, if any; then one per
-  // inclusion orientation.
+  // inclusion orientation; then, with a halo, the crystal domains' again, darkened.
   int first_domain = 2;
   int crystal_domain_count() const { return static_cast<int>(zones.size()) * twin_individuals() * subgrain_count(); }
   int first_inclusion_domain() const { return first_domain + crystal_domain_count() + (vein ? 1 : 0); }
+  // A halo's domains, after the inclusions': one per crystal domain, in the same order.
+  int first_halo_domain() const {
+    return first_inclusion_domain() + (inclusions ? static_cast<int>(inclusions->orientations.size()) : 0);
+  }
+  bool has_halo() const { return inclusions && inclusions->halo; }
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
@@ -187,6 +201,7 @@ struct DomainPart {
   int zone = 0, twin = 0, subgrain = 0;
   bool vein = false;  // the grain's vein fill (SectionGrain::vein); zone, twin, subgrain then 0
   int inclusion = -1;  // the orientation of the grain's inclusions (SectionGrain::inclusions); likewise
+  bool halo = false;   // the host in an inclusion's pleochroic halo (zone, twin and subgrain as the host's)
 };
 
 class SectionMap {

@@ -419,16 +419,18 @@ nlohmann::json inclusions_json(const RockRecipe& r, const PhaseRecipe& ph, const
     const auto e = uniform_euler_deg(s, written * 64 + static_cast<std::size_t>(k));
     euler.push_back({e[0], e[1], e[2]});
   }
-  return {{"mineral", in.mineral},
-          {"size_mm", in.size_mm},
-          {"aspect", in.aspect},
-          {"spacing_mm", in.spacing_mm},
-          {"trail_spacing_mm", in.trail_spacing_mm},
-          {"fraction", in.fraction},
-          {"within", in.within},
-          {"trail_deg", trail},
-          {"rotation_deg", in.rotation_deg * turned},
-          {"euler_deg", std::move(euler)}};
+  nlohmann::json j = {{"mineral", in.mineral},
+                      {"size_mm", in.size_mm},
+                      {"aspect", in.aspect},
+                      {"spacing_mm", in.spacing_mm},
+                      {"trail_spacing_mm", in.trail_spacing_mm},
+                      {"fraction", in.fraction},
+                      {"within", in.within},
+                      {"trail_deg", trail},
+                      {"rotation_deg", in.rotation_deg * turned},
+                      {"euler_deg", std::move(euler)}};
+  if (in.halo) j["halo"] = {{"radius_mm", in.halo->radius_mm}, {"darkening", in.halo->darkening}};
+  return j;
 }
 
 nlohmann::json rock_section_header_json(const RockRecipe& r, std::uint64_t seed) {

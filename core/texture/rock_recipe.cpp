@@ -22,10 +22,22 @@ void known_mineral(const JsonReader& r, const char* key, const std::string& name
   }
 }
 
+}  // namespace
+
+HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, double trail_spacing_mm) {
+  h.warn_unknown_keys({"radius_mm", "darkening"});
+  HaloRecipe r;
+  r.radius_mm = h.require<double>("radius_mm", Range::open_closed(0.5 * size_mm, std::min(spacing_mm, trail_spacing_mm)));
+  r.darkening = h.require<double>("darkening", Range::open_closed(1.0, HaloRecipe::kMaxDarkening));
+  return r;
+}
+
+namespace {
+
 InclusionRecipe read_inclusions(const JsonReader& a) {
   using L = InclusionRecipe;
   a.warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "fraction", "within",
-                       "trail_deg", "rotation_deg", "orientations"});
+                       "trail_deg", "rotation_deg", "orientations", "halo"});
   InclusionRecipe in;
   in.mineral = a.require<std::string>("mineral");
   known_mineral(a, "mineral", in.mineral);
@@ -39,6 +51,7 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
   in.trail_deg = a.optional<double>("trail_deg", Range::closed(-L::kMaxTrailDeg, L::kMaxTrailDeg));
   in.rotation_deg = a.get_or("rotation_deg", 0.0, Range::closed(-L::kMaxRotationDeg, L::kMaxRotationDeg));
   in.orientations = a.get_or("orientations", 4, Range::closed(1, L::kMaxOrientations));
+  if (const auto h = a.optional_object("halo")) in.halo = read_halo(*h, in.size_mm, in.spacing_mm, in.trail_spacing_mm);
   return in;
 }
 
@@ -124,7 +137,12 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     ar.host_orientation = orientation == "host";
     p.alteration = ar;
   }
-  if (const auto a = pr.optional_object("inclusions")) p.inclusions = read_inclusions(*a);
+  if (const auto a = pr.optional_object("inclusions")) {
+    p.inclusions = read_inclusions(*a);
+    if (p.inclusions->halo && !find_mineral(p.mineral).absorbing())
+      a->fail("halo", "a pleochroic halo darkens its host's absorption, and " + p.mineral +
+                          " has no absorption data: it would not show");
+  }
   return p;
 }
 

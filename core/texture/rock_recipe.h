@@ -35,6 +35,8 @@
 #include <string>
 #include <vector>
 
+#include "core/base/json_reader.h"
+
 namespace pmsim {
 
 struct CsdRecipe {
@@ -102,6 +104,16 @@ struct AlterationRecipe {
 // of a crystal of the CSD's largest size while it grew: all grew at one rate until the end (the
 // growth model), so a crystal of size L grew for a time ∝ L and turned rotation_deg·L/max_mm
 // (Rosenfeld 1970). Each crystal's inclusions take `orientations` random orientations.
+// A pleochroic halo round each inclusion (section_map.h SectionGrain::InclusionSet::Halo): the host
+// within radius_mm of the inclusion's centre absorbs `darkening` times as strongly. The reader
+// keeps radius_mm beyond the inclusion's half-length (else nothing shows) and within both
+// spacings (a halo then lies in its inclusion's cell or the next, where the lookup searches).
+struct HaloRecipe {
+  static constexpr double kMaxDarkening = 100.0;
+  double radius_mm = 0.0, darkening = 1.0;
+};
+HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, double trail_spacing_mm);
+
 struct InclusionRecipe {
   // The limits both readers enforce (this recipe's and a section file's, section_map.cpp): an
   // inclusion no longer than its site spacing or wider than its trail spacing, so each cell holds
@@ -114,6 +126,7 @@ struct InclusionRecipe {
   double fraction = 1.0, within = 1.0, rotation_deg = 0.0;
   std::optional<double> trail_deg;
   int orientations = 4;
+  std::optional<HaloRecipe> halo;
 };
 
 struct PhaseRecipe {
