@@ -33,8 +33,8 @@ bool figure_response_applies(const Scene& scene) {
 namespace {
 
 // The side of a flat view's canvas in view pixels: the view's circumscribed circle plus two
-// pixels each side (a turned corner pixel's sub-samples stay on it), of the parity of the view's width (at stage 0° each view
-// pixel is then k × k canvas pixels, read exactly).
+// pixels each side (a turned corner pixel's sub-samples stay on it), of the parity of the view's
+// width (at stage 0° each view pixel is then k × k canvas pixels, read exactly).
 int flat_canvas_side(int width, int height) {
   int side = static_cast<int>(std::ceil(std::hypot(width, height))) + 4;
   if ((side - width) % 2 != 0) ++side;
@@ -379,8 +379,8 @@ std::optional<FigureResponse> render_figure_probes(const Scene& scene, const Ren
 namespace {
 
 // The probes contracted with the frame's nine weights: the view at these polars, stage 0°, as
-// X, Y, Z, 0 at every grid point (the layout cubic::cubic4 reads). Per block, each channel is nine multiply-adds over contiguous
-// planes (they vectorise), then interleaved.
+// X, Y, Z, 0 at every grid point (the layout cubic::cubic4 reads). Per block, each channel is nine
+// multiply-adds over contiguous planes (they vectorise), then interleaved.
 std::vector<float> contract_grid(const FigureResponse& r, const std::array<float, 9>& w,
                                  const std::vector<float>* extra = nullptr, const std::array<float, 9>& we = {}) {
   const std::size_t n = static_cast<std::size_t>(r.width) * r.height;
@@ -568,7 +568,8 @@ void compose_flat(const FigureResponse& r, const std::vector<glm::vec3>& unit_xy
         if (uniform >= 0) v = unit_xyz[uniform] * static_cast<float>(m * m);
         for (std::size_t s = 0; uniform < 0 && s < row_at.size(); ++s) {
           const glm::dvec2& at = row_at[s];
-          // The nearest canvas sub-sample: canvas pixel c's sub-sample s sits at c − ½ + (s + ½)/n.
+          // The nearest label: canvas pixel c's label cell s (of ls a side) is centred on
+          // c − ½ + (s + ½)/ls; the canvas's own sub-samples are the cells s = 3i + 1.
           const int fx = std::clamp(static_cast<int>(std::floor((at.x + x * ex.x + 0.5) * ls)), 0, fine_w - 1);
           const int fy = std::clamp(static_cast<int>(std::floor((at.y + x * ex.y + 0.5) * ls)), 0, fine_h - 1);
           int unit = r.canvas_label[static_cast<std::size_t>(fy / ls) * r.width + fx / ls];

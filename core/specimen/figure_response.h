@@ -48,19 +48,18 @@
 // objective apertures are circular). Its image is a sum over few evaluation units — one per grain
 // or lamella in parallel light, boundary pixels' sub-samples as weights on them — so its probes are
 // taken per unit, not per pixel: a canvas at the view's pixel pitch that holds the view at every
-// stage angle (the view's circumscribed circle and the cubic's reach) is compiled once at stage 0°
+// stage angle (the view's circumscribed circle and two pixels more) is compiled once at stage 0°
 // (its evaluation plan, modal fits kept), every unit is evaluated in the nine probe trains, and a
-// frame combines each unit's nine with its weights, develops the canvas rows it reads (each point
-// the weighted sum of its units, as the renderer develops an image) and reads the view's pixels
-// turned out of it. With an accessory in the slot the frame evaluates every unit in its own train
-// turned into the specimen's frame (train_in_specimen_frame: polars and slot at −θ) instead —
-// exact at every accessory, wedge position and polar setting, for the units' band sums each frame.
+// frame combines each unit's nine with its weights into the unit's colour at its settings. With an
+// accessory in the slot the frame evaluates every unit in its own train turned into the
+// specimen's frame (train_in_specimen_frame: polars and slot at −θ) instead — exact at every
+// accessory, wedge position and polar setting, for the units' band sums each frame.
 // A frame does not interpolate the canvas's colours (a cubic's blend of the partial pixels on
-// either side of a grain boundary blurs it by a pixel: ΔE00 1.1–1.65 from a fresh render at 512²
-// between crossed polars and with the gypsum plate). It samples each view pixel as a fresh render
-// does, n × n sub-samples, each showing the unit of the canvas sub-sample nearest its turned
-// position (canvas_label), and develops the pixel from its units; at stage 0° those are the
-// canvas's own sub-samples, so the view is the canvas render's. A small view's canvas is finer
+// either side of a grain boundary blurs it by a pixel: ΔE00 1.3 from a fresh render at 512² on
+// the grown granite between crossed polars, 1.7–2.0 with the gypsum plate). It samples each view
+// pixel as a fresh render does, n × n sub-samples, each showing the unit of the canvas label
+// nearest its turned position (canvas_label), and takes the mean of their units' colours; at
+// stage 0° those are the canvas's own sub-samples, so the view is the canvas render's. A small view's canvas is finer
 // than its pixels (flat_canvas_scale): its pixel takes (n·k)² sub-samples, its k × k canvas
 // pixels' at stage 0°.
 #include <atomic>
