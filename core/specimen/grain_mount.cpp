@@ -58,7 +58,59 @@ glm::dmat3 random_rotation(SpecimenRandom& rng) {
   return glm::mat3_cast(glm::normalize(q));
 }
 
+// Pulls each vertex (relative to the centre, lab frame) outside a conchoidal face in along its ray
+// onto the face: q = t·u on n·q = d − κ·t²(1 − (u·n)²)/2, the smaller positive root
+// t = 2d / (b + √(b² + 4ad)) with b = u·n, a = κ(1 − b²)/2 (the stable form: no cancellation
+// for a → 0, where it is the plane's d/b). No real root, or none ahead: the ray never leaves.
+void cut_conchoidal(const FractureFace& face, const FragmentShape& shape, const glm::dvec3& scale,
+                    std::vector<glm::dvec3>& vertices) {
+  const double c = std::cos(shape.azimuth_rad), s = std::sin(shape.azimuth_rad);
+  const glm::dvec3& n = face.normal;
+  const glm::dvec3 nl{c * n.x + s * n.y, -s * n.x + c * n.y, n.z};  // fragment frame
+  const double d = face.offset_fraction * glm::length(nl * scale);
+  const double semi = scale.x, r_max = semi * (1.0 + shape.roughness);
+  double kappa = face.curvature / semi;
+  if (kappa < 0.0) {
+    // A concave face has rays that just graze it, where the cut would jump to nothing: its
+    // tangent ray meets it at t = 2d/b* with b*² = q/(1 + q), q = 2|κ|d. Keep that beyond the
+    // blob (≥ 1.05 r_max), so the jump is never in the outline: q ≤ 1/(A − 1), A = (1.05 r_max/2d)².
+    const double big_a = std::pow(1.05 * r_max / (2.0 * d), 2.0);
+    if (big_a > 1.0) kappa = -std::min(-kappa, 1.0 / (big_a - 1.0) / (2.0 * d));
+  }
+  for (glm::dvec3& p : vertices) {
+    const double len = glm::length(p);
+    if (len <= 0.0) continue;
+    const double b = glm::dot(p, n) / len;
+    const double a = 0.5 * kappa * std::max(0.0, 1.0 - b * b);
+    const double disc = b * b + 4.0 * a * d;
+    if (disc < 0.0) continue;
+    const double denom = b + std::sqrt(disc);
+    if (denom <= 0.0) continue;
+    const double t = 2.0 * d / denom;
+    if (len > t) p *= t / len;
+  }
+}
+
 }  // namespace
+
+std::vector<FractureFace> conchoidal_faces(std::uint64_t seed) {
+  SpecimenRandom rng(seed ^ 0xc0c401da1ull);
+  const int count = 5 + std::min(3, int(4.0 * rng.uniform()));
+  const double phi0 = 2.0 * kPi * rng.uniform();
+  std::vector<FractureFace> faces;
+  faces.reserve(std::size_t(count));
+  for (int k = 0; k < count; ++k) {
+    const double phi = phi0 + 2.0 * kPi * (k + 0.7 * (rng.uniform() - 0.5)) / count;
+    const double elevation = radians(24.0) * (2.0 * rng.uniform() - 1.0);
+    FractureFace f;
+    f.normal = {std::cos(elevation) * std::cos(phi), std::cos(elevation) * std::sin(phi), std::sin(elevation)};
+    f.offset_fraction = 0.6 + 0.3 * rng.uniform();
+    const double radius = 1.0 + 3.0 * rng.uniform();  // semi-axes
+    f.curvature = (rng.uniform() < 0.5 ? 1.0 : -1.0) / radius;
+    faces.push_back(f);
+  }
+  return faces;
+}
 
 glm::dmat3 cleavage_orientation(const glm::dvec3& n_in, double azimuth_rad, bool flip) {
   // An orthonormal frame (e1, e2, n) in crystal coordinates; the rotation takes it to the lab's
@@ -127,6 +179,7 @@ FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdiv
       if (std::abs(a) > d) p *= d / std::abs(a);
     }
   }
+  for (const FractureFace& face : shape.fracture_faces) cut_conchoidal(face, shape, scale, m.vertices);
   double zmin = 1e300, zmax = -1e300;
   for (const auto& p : m.vertices) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
   for (auto& p : m.vertices) p += glm::dvec3(shape.centre_um, gap_um - zmin);
@@ -152,6 +205,7 @@ std::vector<FragmentShape> scatter_fragments(const ScatterOptions& o) {
     f.centre_um = {(rng.uniform() - 0.5) * o.field_width_um, (rng.uniform() - 0.5) * o.field_height_um};
     if (o.cleavage_normals.empty()) {
       f.crystal_to_lab = random_rotation(rng);
+      f.fracture_faces = conchoidal_faces(f.seed);
     } else {
       // Three draws, as random_rotation takes: the turn about z, which cleavage, which side up.
       const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();

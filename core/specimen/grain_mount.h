@@ -4,9 +4,11 @@
 // north, z up toward the objective); z = 0 is the top of the slide.
 //
 // A fragment is a closed triangle mesh, star-shaped about its centre: an icosphere whose radius
-// is modulated by a few random smooth lobes (irregular, rounded-angular outline), flattened as
-// fragments settle on their broad side (flat top and bottom, inclined edges), turned about z. Outward winding (counter-clockwise seen
-// from outside), so cross(v1 − v0, v2 − v0) is the outward normal.
+// is modulated by a few random smooth lobes, flattened as fragments settle on their broad side
+// (flat top and bottom, inclined edges), turned about z, then cut by the faces it broke along:
+// cleavage planes (calcite, feldspar, pyroxene) or curved conchoidal fracture faces (quartz,
+// garnet), which give its outline straight or curved edges meeting in sharp corners. Outward
+// winding (counter-clockwise seen from outside), so cross(v1 − v0, v2 − v0) is the outward normal.
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +16,17 @@
 #include <glm/vec3.hpp>
 
 namespace pmsim {
+
+// A conchoidal fracture face: the shell-shaped surface a mineral without cleavage breaks along
+// (quartz, garnet; C. Klein & B. Dutrow, Manual of Mineral Science, 23rd ed., 2007: fracture).
+// It is the paraboloid n·q = d − κ·|q − (q·n)n|²/2 about the axis through the fragment's centre
+// along n (q = p − centre): κ > 0 bulges outward (a convex shell), κ < 0 is hollowed (a concave
+// one). The fragment keeps the side n·q below the surface.
+struct FractureFace {
+  glm::dvec3 normal{1.0, 0.0, 0.0};  // unit, lab frame
+  double offset_fraction = 0.7;      // d: this × the unmodulated blob's half-extent along n
+  double curvature = 0.0;            // κ × the blob's horizontal semi-axis (dimensionless)
+};
 
 struct FragmentShape {
   glm::dvec2 centre_um{0.0};      // position on the slide
@@ -33,6 +46,8 @@ struct FragmentShape {
   // runs along those cleavages' traces in straight (possibly inclined) faces.
   std::vector<glm::dvec3> clip_normals;
   double clip_fraction = 0.7;
+  // A fragment of fracture's conchoidal faces (empty: the smooth lobed blob).
+  std::vector<FractureFace> fracture_faces;
 };
 
 struct FragmentMesh {
@@ -65,8 +80,15 @@ struct ScatterOptions {
 glm::dmat3 cleavage_orientation(const glm::dvec3& n, double azimuth_rad, bool flip);
 // Fragments placed at random without overlap (rejection of overlapping bounding circles), random
 // size, shape, azimuth and a uniformly random 3-D orientation of the crystal (Shoemake's
-// quaternion method), or a cleavage fragment's (see cleavage_normals). Reproducible from
-// options.seed; a mineral without cleavage draws the same mount as before cleavage existed.
+// quaternion method), or a cleavage fragment's (see cleavage_normals). A fragment of fracture
+// (no cleavage) gets 5–8 steep conchoidal faces round its outline (conchoidal_faces). Reproducible
+// from options.seed; the faces come from each fragment's own seed, so a mineral without cleavage
+// places the same fragments, in the same orientations, as before either cut existed.
+// The conchoidal faces of one fragment of fracture, drawn from `seed`: `count` steep faces (normal
+// within 24° of horizontal) at stratified azimuths round the outline, cut at 0.6–0.9 of the
+// blob's extent, each a shell of radius 1–4 semi-axes, convex or concave at random.
+std::vector<FractureFace> conchoidal_faces(std::uint64_t seed);
+
 std::vector<FragmentShape> scatter_fragments(const ScatterOptions& options);
 
 }  // namespace pmsim
