@@ -41,3 +41,11 @@ for stage in 0 90; do
     --set objective.magnification=40 --set objective.na=0.65 --set stage.x_mm=-1.448 --set stage.y_mm=-0.854 \
     --set analyzer=out --set stage_deg="$stage" --out "$root/docs/images/granite_halo_40x_plane_stage${stage}.png"
 done
+# An apatite needle in the grown granite's quartz at 2.21, 2.12 mm, between crossed polars at 40x:
+# its c axis lies at 68.8 degrees in the section, so at stage 111.2 its length is along the polarizer
+# (extinct: parallel extinction) and at 156.2 at 45 degrees to it (its first-order grey).
+for stage in 111.2 156.2; do
+  "$render" "$scene" --set sample.section=granite --set render.width=320 --set render.height=240 --scale-bar \
+    --set objective.magnification=40 --set objective.na=0.65 --set stage.x_mm=2.21 --set stage.y_mm=2.12 \
+    --set stage_deg="$stage" --out "$root/docs/images/granite_apatite_40x_stage${stage%.*}.png"
+done

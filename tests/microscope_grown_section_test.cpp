@@ -516,12 +516,12 @@ TEST(GrownSection, SandstoneQuartzHoldsFluidInclusionsAndItsFeldsparsSericite) {
 // The shipped granite (assets/rocks/granite.json) shows what identifies a granite beyond its
 // mode: plagioclase clouded by sericite in its calcic cores only (Nesse 2012: the cores of zoned
 // crystals alter first), microcline perthite (albite strings in the K-feldspar), and zircon
-// inclusions in biotite, each in its pleochroic halo. Over a 10 × 7.5 mm window on a 10 µm grid: each inclusion domain is its
+// inclusions in biotite, each in its pleochroic halo, and apatite needles in quartz. Over a 10 × 7.5 mm window on a 10 µm grid: each inclusion domain is its
 // host's recipe mineral, and a point's place in its crystal is its growth fraction s.
 TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotite) {
   const auto m = load_section("granite");
   long plag_core = 0, sericite_core = 0, plag_rim = 0, sericite_rim = 0, kfs = 0, albite = 0, bt = 0, zircon = 0,
-       halo = 0;
+       halo = 0, qz = 0, apatite = 0;
   for (double y = -3.75; y < 3.75; y += 0.01)
     for (double x = -5.0; x < 5.0; x += 0.01) {
       const glm::dvec2 p{x, y};
@@ -549,6 +549,11 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
           ASSERT_EQ(included, "zircon");
         }
         ++bt, zircon += inclusion, halo += part.halo;
+      } else if (g.mineral == "quartz") {
+        if (inclusion) {
+          ASSERT_EQ(included, "apatite");
+        }
+        ++qz, apatite += inclusion;
       } else {
         ASSERT_FALSE(inclusion) << g.mineral << " has inclusions the recipe does not give it";
         ASSERT_FALSE(part.halo) << g.mineral << " has haloes the recipe does not give it";
@@ -585,6 +590,16 @@ TEST(GrownSection, GraniteHasSericiteInPlagioclaseCoresPerthiteAndZirconInBiotit
   // microscope_section_inclusions_test checks its geometry). Between 10 and 22 times.
   EXPECT_GT(halo, 10 * zircon);
   EXPECT_LT(halo, 22 * zircon);
+  // Apatite needles in quartz: 0.25 of sites 300 µm apart, each a prism 80 × 10 µm seen at its
+  // projected length, 80·|sin θ| for c uniform on the sphere (mean π/4), never under 10 µm:
+  // 0.25·0.08·0.01·(π/4 + 3·10⁻⁴)/0.09 ≈ 1.75·10⁻³ of the quartz. About 70 needles here, each in 1
+  // of 8 orientations a grain: the count's relative σ ≈ 12 %, and the projected length spreads it
+  // as much again; 35 % is about 2σ, and tells needles from inclusions the size of a site (×3.8)
+  // or none.
+  const double needles = 0.25 * 0.08 * 0.01 * (0.25 * M_PI + 3e-4) / (0.3 * 0.3);
+  std::printf("quartz %ld points, apatite %.5f (recipe %.5f)\n", qz, double(apatite) / double(qz), needles);
+  ASSERT_GT(qz, 100000);
+  EXPECT_NEAR(double(apatite) / double(qz), needles, 0.35 * needles);
   // Microcline's tartan: albite lamellae crossed by pericline lamellae, in the grains cut with both
   // composition planes steep (SectionGeometry.MicroclineCrossHatchIsAGridOfFourIndividuals tests
   // the grid itself); only microcline carries a cross set.

@@ -35,7 +35,8 @@ json grain_report_json(const GrainReport& r) {
                        {"size_mm", in->size_mm},
                        {"rim_trail_deg", in->rim_trail_deg},
                        {"core_trail_deg", in->core_trail_deg},
-                       {"rotation_deg", in->rotation_deg}};
+                       {"rotation_deg", in->rotation_deg},
+                       {"habit", in->habit}};
     if (in->halo_radius_mm > 0.0)
       j["inclusions"]["halo"] = {{"radius_mm", in->halo_radius_mm}, {"darkening", in->halo_darkening}};
   }

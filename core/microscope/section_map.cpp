@@ -377,14 +377,23 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
         sc = grain_growth_fraction(g, g.centre_mm + c);
       }
       if (!(sc <= within)) continue;
+      const auto n = static_cast<int>(in.orientations.size());
+      const int k = std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
+      // A trail's inclusions lie along it; a needle along its own c axis.
+      double length = in.size_mm;
+      if (!in.needles.empty()) {
+        const SectionGrain::InclusionSet::Needle& nd = in.needles[std::size_t(k)];
+        ca = nd.axis.x, sa = nd.axis.y, length = nd.length_mm;
+      }
       const glm::dvec2 e = d - c;
-      const double eu = (ca * e.x + sa * e.y) / (0.5 * in.size_mm), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
-      if (eu * eu + ev * ev > 1.0) {
+      const double eu = (ca * e.x + sa * e.y) / (0.5 * length), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
+      // A needle is a prism seen side-on, a rectangle; other inclusions are ellipses.
+      const bool outside = in.needles.empty() ? eu * eu + ev * ev > 1.0 : std::max(std::abs(eu), std::abs(ev)) > 1.0;
+      if (outside) {
         in_halo = in_halo || glm::dot(e, e) <= halo_r * halo_r;
         continue;
       }
-      const auto n = static_cast<int>(in.orientations.size());
-      return std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
+      return k;
     }
   return in_halo ? kInHalo : -1;
 }
@@ -838,14 +847,27 @@ void read_vein(const JsonReader& gr, SectionGrain& g) {
   g.vein = v;
 }
 
+// A needle's shape in the section from its crystal's orientation L (crystal Cartesian → section):
+// its mineral's elongation (apatite's [0001]), c = L·[uvw], projected on the section.
+SectionGrain::InclusionSet::Needle needle_in_section(const MineralCrystallography& mc, const glm::dmat3& L,
+                                                     double size_mm, double width_mm) {
+  const glm::dvec3 c = glm::normalize(L * lattice_direction(mc.cell, *mc.habit.elongation));
+  const double along = std::hypot(c.x, c.y);
+  SectionGrain::InclusionSet::Needle n;
+  if (along > 1e-12) n.axis = {c.x / along, c.y / along};
+  n.length_mm = std::max(width_mm, size_mm * along);
+  return n;
+}
+
 // "inclusions": {"mineral": m, "size_mm": l, "aspect": a, "spacing_mm": s, "trail_spacing_mm": t,
-//  "trail_deg": θ, "rotation_deg": ω, "fraction": f, "within": w, "euler_deg": [[φ1, Φ, φ2], ...]}
-// (SectionGrain::InclusionSet): each listed orientation is one domain.
+//  "trail_deg": θ, "rotation_deg": ω, "fraction": f, "within": w, "habit": "trail" | "needle",
+//  "euler_deg": [[φ1, Φ, φ2], ...]} (SectionGrain::InclusionSet): each listed orientation is one
+// domain.
 void read_inclusions(const JsonReader& gr, SectionGrain& g) {
   const auto a = gr.optional_object("inclusions");
   if (!a) return;
   a->warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "trail_deg", "rotation_deg",
-                        "fraction", "within", "euler_deg", "halo"});
+                        "fraction", "within", "euler_deg", "halo", "habit"});
   using L = InclusionRecipe;  // the limits a recipe's inclusions meet too (rock_recipe.h)
   SectionGrain::InclusionSet in;
   in.mineral = a->require<std::string>("mineral");
@@ -859,6 +881,7 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
   in.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
   in.within = a->get_or("within", 1.0, Range::open_closed(0, 1));
   const MineralCrystallography* mc = find_mineral_crystallography(in.mineral);
+  const bool needles = read_inclusion_habit(*a, in.mineral, in.size_mm, in.trail_spacing_mm);
   const json* list = a->find("euler_deg");
   if (!list || !list->is_array() || list->empty() || list->size() > std::size_t(L::kMaxOrientations))
     throw InputError(a->file(), a->path("euler_deg"), list ? shown(*list) : "",
@@ -869,8 +892,9 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
       if (!e.is_array() || e.size() != 3) throw BadValue{"each orientation is an array of 3 numbers"};
       return std::array<double, 3>{number_value(e[0]), number_value(e[1]), number_value(e[2])};
     });
-    in.orientations.push_back(
-        indicatrix_in_section(mc, crystal_to_sample_from_bunge({radians(v[0]), radians(v[1]), radians(v[2])})));
+    const glm::dmat3 to_section = crystal_to_sample_from_bunge({radians(v[0]), radians(v[1]), radians(v[2])});
+    in.orientations.push_back(indicatrix_in_section(mc, to_section));
+    if (needles) in.needles.push_back(needle_in_section(*mc, to_section, in.size_mm, in.width_mm));
   }
   if (const auto h = a->optional_object("halo")) {
     const HaloRecipe halo = read_halo(*h, in.size_mm, in.spacing_mm, in.trail_spacing_mm);

@@ -150,10 +150,23 @@ struct SectionGrain {
   // external foliation (spiral, "snowball" Si: Rosenfeld 1970, Geol. Soc. Am. Spec. Pap. 129;
   // Passchier & Trouw 2005, Microtectonics, §7.4). One optical domain per orientation, after the
   // vein's; an inclusion takes one by hash.
+  // Needles ("habit": "needle"): each inclusion is a prism size_mm long and width_mm wide along its
+  // mineral's elongation (apatite's c: Nesse 2012, apatite, small prisms and needles included in
+  // other minerals), seen as its projection on the section: a rectangle size_mm·|c_xy| along
+  // c_xy, never shorter than its width (an end-on prism is a small basal section), width_mm
+  // across. Its shape follows its orientation, so it goes extinct parallel to its length whatever
+  // way it lies.
   struct InclusionSet {
     std::string mineral;
     const Crystal* crystal = nullptr;
     std::vector<glm::dmat3> orientations;  // indicatrix columns in the section frame
+    // Needles: per orientation, the unit direction of c's projection on the section (east if c is
+    // normal to it) and the needle's projected length, mm. Empty: inclusions along the trails.
+    struct Needle {
+      glm::dvec2 axis{1.0, 0.0};
+      double length_mm = 0.0;
+    };
+    std::vector<Needle> needles;
     double size_mm = 0.0, width_mm = 0.0, spacing_mm = 0.0, trail_spacing_mm = 0.0;
     double fraction = 1.0, within = 1.0, trail_rad = 0.0, rotation_rad = 0.0;
     // A pleochroic halo ("halo" in a section file): the host within radius_mm of an inclusion's

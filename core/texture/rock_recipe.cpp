@@ -32,12 +32,26 @@ HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, dou
   return r;
 }
 
+bool read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm, double trail_spacing_mm) {
+  const std::string habit = a.get_or<std::string>("habit", "trail");
+  if (habit == "trail") return false;
+  if (habit != "needle") a.fail("habit", "expected \"trail\" or \"needle\"");
+  const MineralCrystallography* mc = find_mineral_crystallography(mineral);
+  if (!mc || !mc->habit.elongation || !mc->orientation)
+    a.fail("habit", "a needle grows along its mineral's elongation, and " + mineral +
+                        " has no habit.elongation and optical_orientation in the library");
+  if (size_mm > trail_spacing_mm)
+    a.fail("habit", "a needle " + std::to_string(size_mm) + " mm long lies any way: it needs trail_spacing_mm >= size_mm (" +
+                        std::to_string(trail_spacing_mm) + ")");
+  return true;
+}
+
 namespace {
 
 InclusionRecipe read_inclusions(const JsonReader& a) {
   using L = InclusionRecipe;
   a.warn_unknown_keys({"mineral", "size_mm", "aspect", "spacing_mm", "trail_spacing_mm", "fraction", "within",
-                       "trail_deg", "rotation_deg", "orientations", "halo"});
+                       "trail_deg", "rotation_deg", "orientations", "halo", "habit"});
   InclusionRecipe in;
   in.mineral = a.require<std::string>("mineral");
   known_mineral(a, "mineral", in.mineral);
@@ -51,6 +65,7 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
   in.trail_deg = a.optional<double>("trail_deg", Range::closed(-L::kMaxTrailDeg, L::kMaxTrailDeg));
   in.rotation_deg = a.get_or("rotation_deg", 0.0, Range::closed(-L::kMaxRotationDeg, L::kMaxRotationDeg));
   in.orientations = a.get_or("orientations", 4, Range::closed(1, L::kMaxOrientations));
+  in.needles = read_inclusion_habit(a, in.mineral, in.size_mm, in.trail_spacing_mm);
   if (const auto h = a.optional_object("halo")) in.halo = read_halo(*h, in.size_mm, in.spacing_mm, in.trail_spacing_mm);
   return in;
 }

@@ -25,8 +25,10 @@
 //                                            (optional: the cracks filled with a secondary mineral)
 //                "inclusions": {"mineral": "quartz", "size_mm": 0.04, "aspect": 2.5, "spacing_mm": 0.1,
 //                               "trail_spacing_mm": 0.08, "fraction": 0.6, "within": 0.85,
-//                               "trail_deg": 15, "rotation_deg": 90, "orientations": 4},
-//                                            (optional: a poikiloblast's inclusion trails)
+//                               "trail_deg": 15, "rotation_deg": 90, "orientations": 4,
+//                               "habit": "trail|needle", "halo": {"radius_mm", "darkening"}},
+//                                            (optional: a poikiloblast's inclusion trails,
+//                                             needles along their own c, haloes)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -114,6 +116,13 @@ struct HaloRecipe {
 };
 HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, double trail_spacing_mm);
 
+// An inclusion set's "habit": "trail" (the default: each inclusion lies along its trail) or
+// "needle" (each a prism along its own crystal's elongation, section_map.h InclusionSet::Needle).
+// A needle's mineral needs its elongation and optical orientation in the library (to lay the
+// prism in the indicatrix's frame), and the needle may be no longer than either spacing: lying
+// any way, it is then found from its cell's eight neighbours. True for needles.
+bool read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm, double trail_spacing_mm);
+
 struct InclusionRecipe {
   // The limits both readers enforce (this recipe's and a section file's, section_map.cpp): an
   // inclusion no longer than its site spacing or wider than its trail spacing, so each cell holds
@@ -126,6 +135,7 @@ struct InclusionRecipe {
   double fraction = 1.0, within = 1.0, rotation_deg = 0.0;
   std::optional<double> trail_deg;
   int orientations = 4;
+  bool needles = false;
   std::optional<HaloRecipe> halo;
 };
 
