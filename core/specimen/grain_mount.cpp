@@ -58,16 +58,22 @@ glm::dmat3 random_rotation(SpecimenRandom& rng) {
   return glm::mat3_cast(glm::normalize(q));
 }
 
+// Half-extent along the lab direction n of the unmodulated blob (the ellipsoid of semi-axes
+// `scale` turned by azimuth_rad about z): its support function |S·Rᵀn|.
+double blob_half_extent(const glm::dvec3& n, double azimuth_rad, const glm::dvec3& scale) {
+  const double c = std::cos(azimuth_rad), s = std::sin(azimuth_rad);
+  const glm::dvec3 nl{c * n.x + s * n.y, -s * n.x + c * n.y, n.z};  // fragment frame
+  return glm::length(nl * scale);
+}
+
 // Pulls each vertex (relative to the centre, lab frame) outside a conchoidal face in along its ray
 // onto the face: q = t·u on n·q = d − κ·t²(1 − (u·n)²)/2, the smaller positive root
 // t = 2d / (b + √(b² + 4ad)) with b = u·n, a = κ(1 − b²)/2 (the stable form: no cancellation
 // for a → 0, where it is the plane's d/b). No real root, or none ahead: the ray never leaves.
 void cut_conchoidal(const FractureFace& face, const FragmentShape& shape, const glm::dvec3& scale,
                     std::vector<glm::dvec3>& vertices) {
-  const double c = std::cos(shape.azimuth_rad), s = std::sin(shape.azimuth_rad);
   const glm::dvec3& n = face.normal;
-  const glm::dvec3 nl{c * n.x + s * n.y, -s * n.x + c * n.y, n.z};  // fragment frame
-  const double d = face.offset_fraction * glm::length(nl * scale);
+  const double d = face.offset_fraction * blob_half_extent(n, shape.azimuth_rad, scale);
   const double semi = scale.x, r_max = semi * (1.0 + shape.roughness);
   double kappa = face.curvature / semi;
   if (kappa < 0.0) {
@@ -170,10 +176,7 @@ FragmentMesh fragment_mesh(const FragmentShape& shape, double gap_um, int subdiv
   // the slab's face. The blob stays star-shaped about the centre (inside every slab), and a
   // triangle whose corners all land on one face lies in that plane: a flat cleavage face.
   for (const glm::dvec3& n_lab : shape.clip_normals) {
-    // Half-extent of the (unmodulated) blob along n: the support of the scaled ellipsoid.
-    const glm::dvec3 nl{c * n_lab.x + s * n_lab.y, -s * n_lab.x + c * n_lab.y, n_lab.z};  // fragment frame
-    const double extent = glm::length(nl * scale);
-    const double d = shape.clip_fraction * extent;
+    const double d = shape.clip_fraction * blob_half_extent(n_lab, shape.azimuth_rad, scale);
     for (glm::dvec3& p : m.vertices) {
       const double a = glm::dot(p, n_lab);
       if (std::abs(a) > d) p *= d / std::abs(a);
