@@ -40,6 +40,10 @@ json grain_report_json(const GrainReport& r) {
     if (in->halo_radius_mm > 0.0)
       j["inclusions"]["halo"] = {{"radius_mm", in->halo_radius_mm}, {"darkening", in->halo_darkening}};
   }
+  if (const auto& o = r.overgrowth)
+    j["overgrowth"] = {{"habit_scale", o->habit_scale},
+                       {"detrital_radius_mm", o->detrital_radius_mm},
+                       {"dust", o->dust_mineral.empty() ? json(nullptr) : json(o->dust_mineral)}};
   if (r.subgrains)
     j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
                       {"step_deg", r.subgrains->step_deg},

@@ -65,6 +65,14 @@ struct GrainInclusionReport {
   std::string habit = "trail";  // "needle": each along its own elongation (InclusionSet::Needle)
 };
 
+// A detrital grain with overgrowth cement (SectionGrain::Overgrowth): the scale of its euhedral
+// form, the radius of its detrital core's outline in the section (the dust line's circle, about
+// the grain's centre) and the dust's mineral ("" without a dust line).
+struct GrainOvergrowthReport {
+  double habit_scale = 1.0, detrital_radius_mm = 0.0;
+  std::string dust_mineral;
+};
+
 struct GrainReport {
   int id = 0;           // the grain's label (SectionMap::grain_label)
   std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
@@ -88,6 +96,7 @@ struct GrainReport {
   std::optional<GrainSubgrainReport> subgrains;
   std::optional<GrainAlterationReport> alteration;
   std::optional<GrainInclusionReport> inclusions;
+  std::optional<GrainOvergrowthReport> overgrowth;
   // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
   // and crossed light, so nothing above is observable in transmitted light — the extinction
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left

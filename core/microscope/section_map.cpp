@@ -80,6 +80,10 @@ DomainPart SectionMap::domain_part(int d) const {
     part.vein = true;
     return part;
   }
+  if (g.has_dust() && d == g.dust_domain()) {
+    part.dust = true;
+    return part;
+  }
   if (g.has_halo() && d >= g.first_halo_domain()) {
     part.halo = true;
     k = d - g.first_halo_domain();
@@ -98,6 +102,7 @@ const Crystal* SectionMap::crystal_of_domain(int d) const {
   if (part.grain < 0) return nullptr;
   const SectionGrain& g = grains[part.grain];
   if (part.inclusion >= 0) return g.inclusions->crystal;
+  if (part.dust) return g.overgrowth->dust->crystal;
   if (part.halo) return g.inclusions->halo->zone_crystals[static_cast<std::size_t>(part.zone)].get();
   return part.vein ? g.vein->crystal : g.zones[part.zone].crystal;
 }
@@ -112,6 +117,7 @@ const std::string& SectionMap::mineral_of_domain(int d) const {
   if (part.grain < 0) return opaque;
   const SectionGrain& g = grains[part.grain];
   if (part.inclusion >= 0) return g.inclusions->mineral;
+  if (part.dust) return g.overgrowth->dust->mineral;
   return part.vein ? g.vein->mineral : g.zones[part.zone].mineral;
 }
 
@@ -145,6 +151,10 @@ void SectionMap::finish() {
         domain_orientation_.push_back(domain_orientation_[static_cast<std::size_t>(g.first_domain + k)]);
         domain_grain_.push_back(static_cast<int>(i));
       }
+    if (g.has_dust()) {
+      domain_orientation_.push_back(glm::dmat3(1.0));
+      domain_grain_.push_back(static_cast<int>(i));
+    }
   }
   if (raster) {  // domain_at reads the raster: no tiling grid
     if (has_opaque_domain) {
@@ -159,10 +169,20 @@ void SectionMap::finish() {
     if (grains[i].matrix) matrix_grain_ = static_cast<int>(i);
     if (grains[i].growth) grown_grain_.push_back(static_cast<int>(i));
   }
+  cement_.reset();
+  cement_grain_.clear();
   if (!grown_grain_.empty()) {
     grown_ = std::make_shared<const GrownTiling>(
         grown_grain_.size(), [&](std::size_t k) -> const GrainGrowth& { return *grains[grown_grain_[k]].growth; },
         matrix_grain_ >= 0, width_mm, height_mm);
+    std::vector<GrainOvergrowth> overgrowths;
+    for (const int i : grown_grain_)
+      if (const auto& o = grains[i].overgrowth) {
+        const GrainGrowth& b = *grains[i].growth;
+        overgrowths.push_back({b.nucleus_mm, b.shape.support_mm[0], o->habit_scale, o->form});
+        cement_grain_.push_back(i);
+      }
+    if (!overgrowths.empty()) cement_ = std::make_shared<const OvergrowthCement>(std::move(overgrowths), width_mm, height_mm);
     return;
   }
   // Grid over the extent with about two cells per grain, at most 1024 a side.
@@ -242,10 +262,7 @@ void SectionMap::finish() {
 int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
   int best = 0;
   double best_d = 1e300;
-  if (grown_) {
-    const int c = grown_->owner_exhaustive(p);
-    return c < 0 ? matrix_grain_ : grown_grain_[c];
-  }
+  if (grown_) return grown_owner(grown_->owner_exhaustive(p), p, true);
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const double dist = grain_distance2(grains[i], p);
     if (dist < best_d) {
@@ -256,11 +273,19 @@ int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
   return best;
 }
 
-int SectionMap::nearest_grain(const glm::dvec2& p) const {
-  if (grown_) {
-    const int c = grown_->owner(p);
-    return c < 0 ? matrix_grain_ : grown_grain_[c];
+// The grain of tiling crystal c at p; where no crystal reaches p (c < 0), an overgrowth's or the
+// matrix's.
+int SectionMap::grown_owner(int c, const glm::dvec2& p, bool exhaustive) const {
+  if (c >= 0) return grown_grain_[c];
+  if (cement_) {
+    const int k = exhaustive ? cement_->owner_exhaustive(p) : cement_->owner(p);
+    if (k >= 0) return cement_grain_[k];
   }
+  return matrix_grain_;
+}
+
+int SectionMap::nearest_grain(const glm::dvec2& p) const {
+  if (grown_) return grown_owner(grown_->owner(p), p, false);
   if (cell_start_.empty()) return nearest_grain_exhaustive(p);
   const int cx = std::clamp(static_cast<int>(std::floor((p.x + 0.5 * width_mm) / cell_mm_)), 0, cells_x_ - 1);
   const int cy = std::clamp(static_cast<int>(std::floor((p.y + 0.5 * height_mm) / cell_mm_)), 0, cells_y_ - 1);
@@ -415,13 +440,44 @@ int in_spindle(const glm::dvec2& d, const glm::dvec2& normal, double w, int gi, 
   const double half = 0.5 * w * (1.0 + 0.8 * std::cos(2.0 * kPi * (u / (8.0 * w) + phase)));
   return std::abs(tau) < half ? 1 : 0;
 }
+
+// Whether p lies in a speck of grain gi's dust line (SectionGrain::Overgrowth): discs of the dust's
+// size touching the ball's section circle (radius ρ) from inside, their centres on the circle of
+// radius ρ − size/2 in n equal sites, each occupied by hash and jittered along it as far as it
+// stays in its site. `s` is p's growth fraction in the ball.
+bool in_dust(const SectionGrain& g, int gi, const glm::dvec2& p, double s) {
+  const SectionGrain::Overgrowth::Dust& dust = *g.overgrowth->dust;
+  const double r = g.growth->shape.support_mm[0], z = g.growth->nucleus_mm.z;
+  const double half = 0.5 * dust.size_mm, rho = std::sqrt(std::max(0.0, r * r - z * z)), rc = rho - half;
+  if (!(rc > half) || std::abs(s * r - r) > dust.size_mm + 1e-12) return false;  // s·r ≈ |x|: near the surface only
+  const glm::dvec2 d = p - glm::dvec2(g.growth->nucleus_mm);
+  if (std::abs(glm::length(d) - rc) > half) return false;
+  const int n = std::max(3, static_cast<int>(2.0 * kPi * rc / dust.spacing_mm));
+  const double site_rad = 2.0 * kPi / n, jitter = std::max(0.0, 1.0 - dust.size_mm / (rc * site_rad));
+  const double a = std::atan2(d.y, d.x);
+  const int k0 = static_cast<int>(std::floor(a / site_rad));
+  const auto hg = static_cast<std::uint64_t>(gi) + 0xD057u;
+  for (int dk = -1; dk <= 1; ++dk) {
+    const int k = ((k0 + dk) % n + n) % n;
+    const auto hk = static_cast<std::uint64_t>(k);
+    if (hash01(hg, hk, 0) >= dust.fraction) continue;
+    const double c = (k + 0.5 + jitter * (hash01(hg, hk, 1) - 0.5)) * site_rad;
+    const glm::dvec2 e = d - rc * glm::dvec2(std::cos(c), std::sin(c));
+    if (glm::dot(e, e) <= half * half) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   if (crack_family_in_grain(gi, p, crack_width_mm) >= 0) return crack_domain(gi);
   const SectionGrain& g = grains[gi];
   int halo_offset = 0;  // to the host's darkened domain, in an inclusion's halo
-  if (g.inclusions) {
+  // An overgrown grain: its cement (s > 1 in the ball) holds none of what the grain brought along.
+  const double s_ball = g.overgrowth ? growth_fraction(*g.growth, p) : 0.0;
+  if (g.has_dust() && in_dust(g, gi, p, s_ball)) return g.dust_domain();
+  if (g.inclusions && s_ball <= 1.0) {
     const int k = inclusion_at(g, gi, p);
     if (k >= 0) return g.first_inclusion_domain() + k;
     if (k == kInHalo) halo_offset = g.first_halo_domain() - g.first_domain;
@@ -627,6 +683,11 @@ class GrainLookups {
     crystals_.emplace(name, &c);
     return c;
   }
+  const CrystalPolyhedron& overgrowth_form(const MineralCrystallography& mc) {
+    auto [it, fresh] = forms_.try_emplace(&mc);
+    if (fresh) it->second = overgrowth_unit_form(mc);
+    return it->second;
+  }
   const MineralCrystallography* crystallography(const std::string& name) {
     if (const auto it = crystallography_.find(name); it != crystallography_.end()) return it->second;
     const MineralCrystallography* mc = find_mineral_crystallography(name);
@@ -638,6 +699,7 @@ class GrainLookups {
   std::map<std::pair<const MineralCrystallography*, double>, CrystalPolyhedron> templates_;
   std::unordered_map<std::string, const Crystal*> crystals_;
   std::unordered_map<std::string, const MineralCrystallography*> crystallography_;
+  std::map<const MineralCrystallography*, CrystalPolyhedron> forms_;
 };
 
 // A twin law of the grain's mineral file (the twin object's "law", matched as a prefix of the
@@ -808,6 +870,40 @@ void read_grain(const JsonReader& gr, SectionGrain& g, double thickness_um, Grai
     }
 }
 
+// "overgrowth": {"habit_scale": H, "dust": {"mineral": m, "size_mm": d, "spacing_mm": s, "fraction": f}}
+// (SectionGrain::Overgrowth): on a detrital ball of a mineral with a unit cell and an orientation
+// (euler_deg) to lay the form in. H in (0, kMaxOvergrowthScale]: the form at 3 is three times the
+// grain, far beyond any cement a sandstone holds.
+constexpr double kMaxOvergrowthScale = 3.0;
+void read_overgrowth(const JsonReader& gr, SectionGrain& g, GrainLookups& lookups) {
+  const auto o = gr.optional_object("overgrowth");
+  if (!o) return;
+  o->warn_unknown_keys({"habit_scale", "dust"});
+  const MineralCrystallography* mc = lookups.crystallography(g.mineral);
+  if (!g.growth || !g.growth->shape.normals.empty())
+    gr.fail("overgrowth", "an overgrowth grows on a detrital grain: a grown \"sphere\" (\"growth\": {\"shape\": \"sphere\"})");
+  if (!mc || !g.lattice_to_section)
+    gr.fail("overgrowth", "an overgrowth continues its grain's lattice: " + g.mineral +
+                              " needs a unit cell in the library and the grain an euler_deg");
+  SectionGrain::Overgrowth og;
+  og.habit_scale = o->require<double>("habit_scale", Range::open_closed(0, kMaxOvergrowthScale));
+  og.form = overgrowth_form(lookups.overgrowth_form(*mc), *g.lattice_to_section, g.growth->shape.support_mm[0], og.habit_scale);
+  if (const auto d = o->optional_object("dust")) {
+    d->warn_unknown_keys({"mineral", "size_mm", "spacing_mm", "fraction"});
+    SectionGrain::Overgrowth::Dust dust;
+    dust.mineral = d->require<std::string>("mineral");
+    dust.crystal = &lookups.mineral(*d, "mineral", dust.mineral);
+    if (dust.crystal->symmetry() != CrystalSymmetry::Isotropic)
+      d->fail("mineral", "a dust line's specks are fluid, glass or an opaque or cubic mineral (isotropic): " + dust.mineral +
+                             " would need an orientation of its own");
+    dust.size_mm = d->require<double>("size_mm", Range::open_closed(0, 0.1));
+    dust.spacing_mm = d->require<double>("spacing_mm", Range::closed(dust.size_mm, 1.0));
+    dust.fraction = d->get_or("fraction", 1.0, Range::closed(0, 1));
+    og.dust = dust;
+  }
+  g.overgrowth = std::move(og);
+}
+
 // "subgrains": {"width_mm": w, "step_deg": s, "axis": [x, y, z], "wall_normal": [x, y, z]}
 // (section frame). The bands cover the grain's longest extent on either side of its centre
 // (the outer two take whatever of a grown grain lies further); a misorientation step above 15°
@@ -922,8 +1018,8 @@ void darken_halo(const JsonReader& gr, SectionGrain& g) {
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
 // reports, is the section's extent).
 void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
-  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration", "inclusions"})
-    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains, veins or inclusions of its own");
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration", "inclusions", "overgrowth"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains, veins, inclusions or overgrowth of its own");
   g.matrix = true;
   g.centre_mm = {0.0, 0.0};
   set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
@@ -996,6 +1092,7 @@ SectionGrain read_section_grain(const JsonReader& gr, const SectionMap& m, Grain
   if (!g.matrix) read_subgrains(gr, g);
   if (!g.matrix) read_vein(gr, g);
   if (!g.matrix) read_inclusions(gr, g);
+  if (!g.matrix) read_overgrowth(gr, g, templates);
   if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
   darken_halo(gr, g);
   return g;

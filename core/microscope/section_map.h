@@ -11,7 +11,7 @@
 //
 // Optical domains: 0 the slide beyond the section's extent, 1 the mounting medium in cracks (both
 // without a crystal), then per grain zones × twin individuals × subgrains, its vein fill and its
-// inclusions' orientations.
+// inclusions' orientations, its haloes' and its dust line's.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -24,6 +24,7 @@
 
 #include "core/crystal/crystal.h"
 #include "core/texture/grown_tiling.h"
+#include "core/texture/overgrowth_cement.h"
 #include "core/texture/rock_growth.h"
 
 namespace pmsim {
@@ -180,6 +181,26 @@ struct SectionGrain {
     std::optional<Halo> halo;
   };
   std::optional<InclusionSet> inclusions;
+  // Syntaxial overgrowth cement ("overgrowth" in a section file; core/texture/overgrowth_cement.h):
+  // a detrital ball ("growth" shape "sphere") whose crystal grew on into the pores toward its
+  // euhedral form, in lattice continuity: the cement's points are the grain's, in its outermost
+  // zone's domains, so the grain and its overgrowth go extinct together. Only the dust line tells
+  // them apart: specks of `dust` (fluid inclusions, clay, oxide) that coated the detrital surface
+  // when the cement grew over it (McBride 1989; Tucker 2001, §2.9.1), each a disc size_mm across
+  // touching the ball's section circle from inside, one site every spacing_mm along it, occupied
+  // with probability `fraction` (a hash of grain and site). The grain's other inclusions, which it
+  // brought from its source rock, stop at the dust line (s ≤ 1).
+  struct Overgrowth {
+    double habit_scale = 1.0;
+    CrystalPolyhedron form;  // section frame, about the grain's nucleus
+    struct Dust {
+      std::string mineral;
+      const Crystal* crystal = nullptr;  // isotropic or opaque: a speck's orientation does not show
+      double size_mm = 0.0, spacing_mm = 0.0, fraction = 1.0;
+    };
+    std::optional<Dust> dust;
+  };
+  std::optional<Overgrowth> overgrowth;
   // Domains first_domain … first_domain + crystal_domain_count() − 1, in the order zone, twin
   // individual, subgrain (the last varying fastest); then the vein's, if any; then one per
   // inclusion orientation; then, with a halo, the crystal domains' again, darkened.
@@ -191,6 +212,9 @@ struct SectionGrain {
     return first_inclusion_domain() + (inclusions ? static_cast<int>(inclusions->orientations.size()) : 0);
   }
   bool has_halo() const { return inclusions && inclusions->halo; }
+  // The dust line's one domain, after the halo's.
+  int dust_domain() const { return first_halo_domain() + (has_halo() ? crystal_domain_count() : 0); }
+  bool has_dust() const { return overgrowth && overgrowth->dust; }
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):
@@ -215,6 +239,7 @@ struct DomainPart {
   bool vein = false;  // the grain's vein fill (SectionGrain::vein); zone, twin, subgrain then 0
   int inclusion = -1;  // the orientation of the grain's inclusions (SectionGrain::inclusions); likewise
   bool halo = false;   // the host in an inclusion's pleochroic halo (zone, twin and subgrain as the host's)
+  bool dust = false;   // a speck of the grain's dust line (SectionGrain::Overgrowth::Dust)
 };
 
 class SectionMap {
@@ -272,6 +297,10 @@ class SectionMap {
   // without one).
   std::shared_ptr<const GrownTiling> grown_;
   std::vector<int> grown_grain_;
+  // The overgrowths of grown grains (their pore points), and each one's grain.
+  std::shared_ptr<const OvergrowthCement> cement_;
+  std::vector<int> cement_grain_;
+  int grown_owner(int crystal, const glm::dvec2& p_mm, bool exhaustive) const;
   int matrix_grain_ = -1;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
   int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/base/input_error.h"
 #include "core/base/splitmix64.h"
 #include "core/crystal/axis_rotation.h"
 #include "core/crystal/crystal_polyhedron.h"
@@ -19,6 +20,7 @@
 #include "core/texture/foam_relaxation.h"
 #include "core/texture/grain_packing.h"
 #include "core/texture/grown_tiling.h"
+#include "core/texture/overgrowth_cement.h"
 
 namespace pmsim {
 
@@ -362,6 +364,46 @@ DrawnRock calibrate(const RockRecipe& r, const std::vector<PhaseModel>& models, 
   }
 }
 
+// The overgrowth scale that puts each overgrown phase's cement_percent in the section: on the
+// raster measure_areas counts, the pore points' least reach over the phase's grains (those the
+// section keeps), and its quantile at the cement's share of all points (overgrowth_scale_for). A
+// phase is calibrated alone: two overgrown phases would share the pores both reach.
+constexpr double kCalibrationScale = 2.0;  // the forms the reaches are read from: beyond any cement of a porous sand
+void calibrate_cement(const RockRecipe& r, const GrownTiling& t, double min_size_mm, RockGrowth& out) {
+  out.overgrowth_scale.assign(r.phases.size(), 0.0);
+  out.cement_fraction.assign(r.phases.size(), 0.0);
+  const double step = std::max(min_size_mm / 3.0, std::max(r.width_mm, r.height_mm) / 2000.0);
+  const int fx = static_cast<int>(std::ceil(r.width_mm / step)), fy = static_cast<int>(std::ceil(r.height_mm / step));
+  for (std::size_t k = 0; k < r.phases.size(); ++k) {
+    const auto& og = r.phases[k].overgrowth;
+    if (!og) continue;
+    const CrystalPolyhedron unit = overgrowth_unit_form(*find_mineral_crystallography(r.phases[k].mineral));
+    std::vector<GrainOvergrowth> grains;
+    for (const GrownCrystal& c : out.crystals)
+      if (c.phase == int(k) && c.area_mm2 > 0.0)
+        grains.push_back({c.nucleus_mm, 0.5 * c.size_mm, kCalibrationScale,
+                          overgrowth_form(unit, crystal_frame(c), 0.5 * c.size_mm, kCalibrationScale)});
+    const OvergrowthCement cal(std::move(grains), r.width_mm, r.height_mm);
+    std::vector<double> reach(static_cast<std::size_t>(fx) * fy, -1.0);
+    tbb::parallel_for(0, fy, [&](int j) {
+      for (int i = 0; i < fx; ++i) {
+        const glm::dvec2 p{((i + 0.5) / fx - 0.5) * r.width_mm, ((j + 0.5) / fy - 0.5) * r.height_mm};
+        if (t.owner(p) < 0) reach[static_cast<std::size_t>(j) * fx + i] = cal.least_reach(p);
+      }
+    });
+    std::erase(reach, -1.0);
+    const double cement = og->cement_percent / 100.0;
+    try {
+      out.overgrowth_scale[k] = overgrowth_scale_for(reach, static_cast<std::size_t>(fx) * fy, cement);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(r.path, "phases[" + std::to_string(k) + "].overgrowth.cement_percent", std::to_string(og->cement_percent),
+                       e.what());
+    }
+    out.cement_fraction[k] = double(std::count_if(reach.begin(), reach.end(), [&](double x) { return x <= out.overgrowth_scale[k]; })) /
+                             (double(fx) * fy);
+  }
+}
+
 }  // namespace
 
 RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
@@ -389,6 +431,7 @@ RockGrowth grow_rock(const RockRecipe& r, std::uint64_t seed) {
   for (const PhaseRecipe& ph : r.phases) min_size = std::min(min_size, ph.csd.min_mm);
   measure_areas(r, d.tiling, min_size, d.crystals);
   out.crystals = std::move(d.crystals);
+  calibrate_cement(r, d.tiling, min_size, out);
   return out;
 }
 
@@ -449,7 +492,8 @@ constexpr std::uint64_t kGrainRandomSeed = 0x5B9A1Full;
 
 // The grain of crystal c, the written-th of the file; draws from rng only for the phase's
 // subgrains, alteration and inclusions.
-nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, std::uint64_t seed, std::size_t written, Random& rng) {
+nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, const std::vector<double>& scales, std::uint64_t seed,
+                          std::size_t written, Random& rng) {
   const PhaseRecipe& ph = r.phases[c.phase];
   nlohmann::json j = {{"mineral", ph.mineral},
                       {"centre_mm", {c.nucleus_mm.x, c.nucleus_mm.y}},
@@ -473,6 +517,11 @@ nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, std::uint6
     j["alteration"] = {{"mineral", ph.alteration->mineral}, {"vein_mm", ph.alteration->vein_mm}, {"euler_deg", {e[0], e[1], e[2]}}};
   }
   if (ph.inclusions) j["inclusions"] = inclusions_json(r, ph, c, seed, written, rng);
+  if (const auto& og = ph.overgrowth) {
+    j["overgrowth"] = {{"habit_scale", scales[std::size_t(c.phase)]}};
+    if (const auto& d = og->dust)
+      j["overgrowth"]["dust"] = {{"mineral", d->mineral}, {"size_mm", d->size_mm}, {"spacing_mm", d->spacing_mm}, {"fraction", d->fraction}};
+  }
   return j;
 }
 
@@ -486,7 +535,7 @@ RockGrainsJson::RockGrainsJson(const RockRecipe& r, const RockGrowth& g, std::ui
     if (!(c.area_mm2 > 0.0)) continue;
     random_state_.push_back(rng.state);
     const PhaseRecipe& ph = r.phases[c.phase];
-    if (ph.undulose || ph.alteration || ph.inclusions) grain_json(r, c, seed, crystal_.size(), rng);  // its draws
+    if (ph.undulose || ph.alteration || ph.inclusions) grain_json(r, c, g.overgrowth_scale, seed, crystal_.size(), rng);  // its draws
     crystal_.push_back(static_cast<std::uint32_t>(i));
   }
 }
@@ -495,7 +544,7 @@ nlohmann::json RockGrainsJson::grain(std::size_t k) const {
   if (k == crystal_.size()) return {{"mineral", recipe_.matrix_mineral}, {"matrix", true}, {"euler_deg", {0.0, 0.0, 0.0}}};
   Random rng(0);
   rng.state = random_state_[k];
-  return grain_json(recipe_, growth_.crystals[crystal_[k]], seed_, k, rng);
+  return grain_json(recipe_, growth_.crystals[crystal_[k]], growth_.overgrowth_scale, seed_, k, rng);
 }
 
 void for_each_rock_grain_json(const RockRecipe& r, const RockGrowth& g, std::uint64_t seed,

@@ -55,12 +55,15 @@ struct RockGrowth {
   // Every crystal drawn (the nucleation–growth population whose free sizes follow the CSD); those
   // with area_mm2 > 0 are the section's grains.
   std::vector<GrownCrystal> crystals;
-  std::vector<double> area_fraction;   // per phase, then the matrix, on the measuring raster
+  std::vector<double> area_fraction;   // per phase, then the matrix (with cement: pores and cement), on the measuring raster
   // Per phase: the sampling error of its area fraction in a section this size, √(Σ aᵢ²) / A over
   // its grains' areas aᵢ (a Poisson count of grains, each carrying its area): what one section
   // can tell of the mode. A few large phenocrysts make it several per cent.
   std::vector<double> sampling_error;
   std::vector<double> density_per_mm3; // per phase, after calibration
+  // Per phase: the habit_scale of its grains' overgrowths (overgrowth_cement.h; 0: none) and the
+  // area fraction of the cement they put in the pores, on measure_areas' raster.
+  std::vector<double> overgrowth_scale, cement_fraction;
   int rounds = 0;                      // calibration rounds over the whole section
   int window_rounds = 0;               // before them, over the calibration window (0: none)
 };

@@ -71,7 +71,7 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
 }
 
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "overgrowth", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -158,6 +158,27 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
       a->fail("halo", "a pleochroic halo darkens its host's absorption, and " + p.mineral +
                           " has no absorption data: it would not show");
   }
+  if (const auto o = pr.optional_object("overgrowth")) {
+    o->warn_unknown_keys({"cement_percent", "dust", "source"});
+    if (!p.rounded) pr.fail("overgrowth", "an overgrowth grows on a rounded detrital grain (\"shape\": \"rounded\")");
+    const MineralCrystallography* mc = find_mineral_crystallography(p.mineral);
+    if (!mc) pr.fail("overgrowth", "an overgrowth continues its grain's lattice, and " + p.mineral + " has no unit cell in the library");
+    OvergrowthRecipe og;
+    og.cement_percent = o->require<double>("cement_percent", Range::open_closed(0, 100));
+    if (const auto d = o->optional_object("dust")) {
+      d->warn_unknown_keys({"mineral", "size_mm", "spacing_mm", "fraction"});
+      DustLineRecipe dust;
+      dust.mineral = d->require<std::string>("mineral");
+      known_mineral(*d, "mineral", dust.mineral);
+      if (find_mineral(dust.mineral).symmetry() != CrystalSymmetry::Isotropic)
+        d->fail("mineral", "a dust line's specks are isotropic (fluid, glass, an opaque or cubic mineral)");
+      dust.size_mm = d->require<double>("size_mm", Range::open_closed(0, 0.1));
+      dust.spacing_mm = d->require<double>("spacing_mm", Range::closed(dust.size_mm, 1.0));
+      dust.fraction = d->get_or("fraction", 1.0, Range::closed(0, 1));
+      og.dust = dust;
+    }
+    p.overgrowth = og;
+  }
   return p;
 }
 
@@ -197,8 +218,13 @@ RockRecipe read_rock_recipe(const std::string& path) {
   for (const JsonReader& pr : r.objects("phases", 1)) {
     rr.phases.push_back(read_phase(pr, rr.granoblastic.has_value()));
     total += rr.phases.back().mode_percent;
+    // Cement fills pores: it needs them, and its volume counts with the grains'.
+    if (const auto& o = rr.phases.back().overgrowth) {
+      if (rr.matrix_mineral.empty()) pr.fail("overgrowth", "cement fills pores, and this rock has no matrix (pore space)");
+      total += o->cement_percent;
+    }
   }
-  if (total > 100.0 + 1e-9) r.fail("phases", "the modes sum to " + std::to_string(total) + " %, over 100");
+  if (total > 100.0 + 1e-9) r.fail("phases", "the modes (and cements) sum to " + std::to_string(total) + " %, over 100");
   if (rr.matrix_mineral.empty() && std::abs(total - 100.0) > 1e-6)
     r.fail("phases", "without a matrix the modes must sum to 100 % (they sum to " + std::to_string(total) + ")");
   return rr;

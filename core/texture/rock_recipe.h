@@ -29,6 +29,10 @@
 //                               "habit": "trail|needle", "halo": {"radius_mm", "darkening"}},
 //                                            (optional: a poikiloblast's inclusion trails,
 //                                             needles along their own c, haloes)
+//                "overgrowth": {"cement_percent": 5, "dust": {"mineral": "aqueous_fluid", "size_mm": 0.004,
+//                               "spacing_mm": 0.008, "fraction": 0.6}},
+//                                            (optional, on a rounded phase in a rock with pores:
+//                                             syntaxial cement with a dust line)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -139,6 +143,19 @@ struct InclusionRecipe {
   std::optional<HaloRecipe> halo;
 };
 
+// Syntaxial overgrowth cement on a rounded phase's grains (overgrowth_cement.h): cement_percent of
+// the section, taken from the pores, in lattice continuity with each grain; the grains' forms all
+// at one habit_scale, the one that puts that much cement in the section (grow_rock calibrates it).
+// With a dust line of isotropic specks (fluid inclusions) on the detrital surface it grew over.
+struct DustLineRecipe {
+  std::string mineral;
+  double size_mm = 0.004, spacing_mm = 0.008, fraction = 1.0;
+};
+struct OvergrowthRecipe {
+  double cement_percent = 5.0;
+  std::optional<DustLineRecipe> dust;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -157,6 +174,7 @@ struct PhaseRecipe {
   std::optional<UnduloseRecipe> undulose;
   std::optional<AlterationRecipe> alteration;
   std::optional<InclusionRecipe> inclusions;
+  std::optional<OvergrowthRecipe> overgrowth;
 };
 
 // A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
