@@ -104,11 +104,16 @@ double OvergrowthCement::arrival(std::size_t i, const glm::dvec2& p) const {
   return s <= 1.0 ? g.radius_mm * (g.habit_scale * s - 1.0) : kInf;
 }
 
-int OvergrowthCement::owner(const glm::dvec2& p) const {
+int OvergrowthCement::cell(const glm::dvec2& p) const {
   if (cell_start_.empty()) return -1;
   const double fx = std::floor((p.x - x0_) / cell_mm_), fy = std::floor((p.y - y0_) / cell_mm_);
   if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_x_ && fy < cells_y_)) return -1;
-  const std::size_t c = static_cast<std::size_t>(fy) * cells_x_ + static_cast<std::size_t>(fx);
+  return static_cast<int>(fy) * cells_x_ + static_cast<int>(fx);
+}
+
+int OvergrowthCement::owner(const glm::dvec2& p) const {
+  const int c = cell(p);
+  if (c < 0) return -1;
   int best = -1;
   double best_t = kInf;
   for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {  // in index order: ties to the lowest
@@ -135,10 +140,8 @@ int OvergrowthCement::owner_exhaustive(const glm::dvec2& p) const {
 }
 
 double OvergrowthCement::least_reach(const glm::dvec2& p) const {
-  if (cell_start_.empty()) return kInf;
-  const double fx = std::floor((p.x - x0_) / cell_mm_), fy = std::floor((p.y - y0_) / cell_mm_);
-  if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_x_ && fy < cells_y_)) return kInf;
-  const std::size_t c = static_cast<std::size_t>(fy) * cells_x_ + static_cast<std::size_t>(fx);
+  const int c = cell(p);
+  if (c < 0) return kInf;
   double least = kInf;
   for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
     const GrainOvergrowth& g = grains_[static_cast<std::size_t>(cell_grains_[k])];

@@ -72,6 +72,7 @@ class OvergrowthCement {
 
  private:
   double arrival(std::size_t i, const glm::dvec2& p) const;
+  int cell(const glm::dvec2& p) const;  // the grid cell of p, −1 outside the grid
   std::vector<GrainOvergrowth> grains_;
   // A grid over the section; per cell the overgrowths whose forms' section discs reach it.
   double cell_mm_ = 1.0, x0_ = 0.0, y0_ = 0.0;
