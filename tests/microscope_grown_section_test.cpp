@@ -575,6 +575,36 @@ TEST(GrownSection, SandstoneQuartzCementContinuesItsGrainsBehindADustLine) {
   EXPECT_GT(dusted_grains.size(), 100u);
 }
 
+// The shipped pegmatite's graphic intergrowth (assets/rocks/pegmatite.json; section_map.h
+// InclusionSet::wedges): over the whole 20 × 15 mm section on a 25 µm grid, the quartz in each
+// microcline host is one crystal (one domain: it goes extinct as one, the diagnostic of graphic
+// texture), and its share of the microcline is the recipe's wedges: f·E[k²]·(l·w/2)/(s·t) =
+// 0.6175·(1.0 × 0.45/2)/(1.0 × 0.6) = 0.2316. About 310 sites: the scale's spread (E[k⁴] − E[k²]²
+// = 0.041) gives a relative σ of 1.9 %, and wedges cut by a host's outline lose a few per cent
+// more; 10 % covers both and still tells triangles from ellipses (π/4 ÷ ½: 57 % more quartz).
+TEST(GrownSection, PegmatiteQuartzWedgesAreOneCrystalInEachMicrocline) {
+  const auto m = load_section("pegmatite");
+  long host = 0, quartz = 0;
+  std::map<int, std::set<int>> quartz_domains;  // per microcline grain
+  for (double y = -7.5 + 0.0125; y < 7.5; y += 0.025)
+    for (double x = -10.0 + 0.0125; x < 10.0; x += 0.025) {
+      const int d = m->domain_at({x, y});
+      const DomainPart part = m->domain_part(d);
+      if (part.grain < 0 || m->grains[std::size_t(part.grain)].mineral != "microcline") continue;
+      ++host;
+      if (part.inclusion < 0) continue;
+      ++quartz;
+      ASSERT_EQ(m->mineral_of_domain(d), "quartz");
+      quartz_domains[part.grain].insert(d);
+    }
+  const double share = double(quartz) / double(host), recipe = 0.6175 * (1.0 * 0.45 / 2) / (1.0 * 0.6);
+  std::printf("microcline %ld points, graphic quartz %.4f (recipe %.4f) in %zu hosts\n", host, share, recipe,
+              quartz_domains.size());
+  EXPECT_NEAR(share, recipe, 0.1 * recipe);
+  EXPECT_GE(quartz_domains.size(), 3u);
+  for (const auto& [grain, domains] : quartz_domains) EXPECT_EQ(domains.size(), 1u) << "grain " << grain;
+}
+
 // The shipped granite (assets/rocks/granite.json) shows what identifies a granite beyond its
 // mode: plagioclase clouded by sericite in its calcic cores only (Nesse 2012: the cores of zoned
 // crystals alter first), microcline perthite (albite strings in the K-feldspar), and zircon

@@ -166,6 +166,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     r.inclusions = GrainInclusionReport{in->mineral, in->size_mm, trail(in->within), trail(0.0),
                                         degrees(in->rotation_rad * in->within)};
     if (!in->needles.empty()) r.inclusions->habit = "needle";
+    if (in->wedges) r.inclusions->habit = "wedge";
     if (in->halo) {
       r.inclusions->halo_radius_mm = in->halo->radius_mm;
       r.inclusions->halo_darkening = in->halo->darkening;

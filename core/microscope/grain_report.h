@@ -62,7 +62,7 @@ struct GrainInclusionReport {
   // Each inclusion's pleochroic halo (SectionGrain::InclusionSet::Halo): its radius from the
   // inclusion's centre and the host's absorption factor there; 0 and 1 without one.
   double halo_radius_mm = 0.0, halo_darkening = 1.0;
-  std::string habit = "trail";  // "needle": each along its own elongation (InclusionSet::Needle)
+  std::string habit = "trail";  // "needle": each along its own elongation (InclusionSet::Needle); "wedge": triangles (InclusionSet::wedges)
 };
 
 // A detrital grain with overgrowth cement (SectionGrain::Overgrowth): the scale of its euhedral

@@ -352,6 +352,10 @@ double grain_growth_fraction(const SectionGrain& g, const glm::dvec2& p) {
   return g.growth ? growth_fraction(*g.growth, p) : std::sqrt(ellipse_q(g, p));
 }
 
+// The smallest wedge's scale (SectionGrain::InclusionSet::wedges): scales uniform in [0.55, 1]
+// give wedges a mean area E[k²] = (1 − 0.55³)/(3·0.45) = 0.6175 of the largest's.
+constexpr double kWedgeMinScale = 0.55;
+
 // inclusion_at's answer for a point of the host inside an inclusion's halo.
 constexpr int kInHalo = -2;
 
@@ -382,8 +386,11 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
       // The centre in the trails' own frame (mm), then turned by its own growth fraction's turn:
       // a turn moves the centre along a circle about the grain's centre, nearly along a contour
       // of s, so two fixed-point steps from p's turn settle it.
-      const double u = (site + (1.0 - 2.0 * half_l) * (hash01(hg, ht, hs, 1) - 0.5)) * in.spacing_mm;
-      const double v = (trail + (1.0 - 2.0 * half_w) * (hash01(hg, ht, hs, 2) - 0.5)) * in.trail_spacing_mm;
+      // Wedges come in sizes (a graphic intergrowth's rods are not cast alike): a scale uniform in
+      // [kWedgeMinScale, 1] by hash, the jitter then as far as the smaller wedge stays in its cell.
+      const double scale = in.wedges ? kWedgeMinScale + (1.0 - kWedgeMinScale) * hash01(hg, ht, hs, 4) : 1.0;
+      const double u = (site + (1.0 - 2.0 * scale * half_l) * (hash01(hg, ht, hs, 1) - 0.5)) * in.spacing_mm;
+      const double v = (trail + (1.0 - 2.0 * scale * half_w) * (hash01(hg, ht, hs, 2) - 0.5)) * in.trail_spacing_mm;
       // Without a turn (rotation 0: sericite, perthite, fluid trails) the frame is p's own and
       // the centre's growth fraction matters only against a finite `within`: the same numbers
       // as the fixed point, without its gauges and sines.
@@ -405,15 +412,18 @@ int inclusion_at(const SectionGrain& g, int gi, const glm::dvec2& p) {
       const auto n = static_cast<int>(in.orientations.size());
       const int k = std::min(n - 1, static_cast<int>(hash01(hg, ht, hs, 3) * n));
       // A trail's inclusions lie along it; a needle along its own c axis.
-      double length = in.size_mm;
+      double length = scale * in.size_mm, width = scale * in.width_mm;
       if (!in.needles.empty()) {
         const SectionGrain::InclusionSet::Needle& nd = in.needles[std::size_t(k)];
         ca = nd.axis.x, sa = nd.axis.y, length = nd.length_mm;
       }
       const glm::dvec2 e = d - c;
-      const double eu = (ca * e.x + sa * e.y) / (0.5 * length), ev = (-sa * e.x + ca * e.y) / (0.5 * in.width_mm);
-      // A needle is a prism seen side-on, a rectangle; other inclusions are ellipses.
-      const bool outside = in.needles.empty() ? eu * eu + ev * ev > 1.0 : std::max(std::abs(eu), std::abs(ev)) > 1.0;
+      const double eu = (ca * e.x + sa * e.y) / (0.5 * length), ev = (-sa * e.x + ca * e.y) / (0.5 * width);
+      // A needle is a prism seen side-on, a rectangle; a wedge a triangle, its base (the full
+      // width) at eu = −1 and its apex at eu = 1; other inclusions are ellipses.
+      const bool outside = !in.needles.empty() ? std::max(std::abs(eu), std::abs(ev)) > 1.0
+                           : in.wedges        ? std::abs(eu) > 1.0 || std::abs(ev) > 0.5 * (1.0 - eu)
+                                              : eu * eu + ev * ev > 1.0;
       if (outside) {
         in_halo = in_halo || glm::dot(e, e) <= halo_r * halo_r;
         continue;
@@ -977,7 +987,9 @@ void read_inclusions(const JsonReader& gr, SectionGrain& g) {
   in.fraction = a->get_or("fraction", 1.0, Range::closed(0, 1));
   in.within = a->get_or("within", 1.0, Range::open_closed(0, 1));
   const MineralCrystallography* mc = find_mineral_crystallography(in.mineral);
-  const bool needles = read_inclusion_habit(*a, in.mineral, in.size_mm, in.trail_spacing_mm);
+  const InclusionHabit habit = read_inclusion_habit(*a, in.mineral, in.size_mm, in.trail_spacing_mm);
+  const bool needles = habit == InclusionHabit::Needle;
+  in.wedges = habit == InclusionHabit::Wedge;
   const json* list = a->find("euler_deg");
   if (!list || !list->is_array() || list->empty() || list->size() > std::size_t(L::kMaxOrientations))
     throw InputError(a->file(), a->path("euler_deg"), list ? shown(*list) : "",

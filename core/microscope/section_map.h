@@ -168,6 +168,12 @@ struct SectionGrain {
       double length_mm = 0.0;
     };
     std::vector<Needle> needles;
+    // Wedges ("habit": "wedge"): each inclusion a triangle size_mm long along its trail, width_mm
+    // wide at its base, its apex toward the trail's direction: the cuneiform quartz rods of a
+    // graphic intergrowth cut across (the runic texture; Fenn 1986, Am. Mineral. 71, 325–330;
+    // MacKenzie, Donaldson & Guilford 1982, Atlas of Igneous Rocks and their Textures, graphic
+    // texture), all of one host's alike. Its area is ½·size·width (an ellipse's: (π/4)·size·width).
+    bool wedges = false;
     double size_mm = 0.0, width_mm = 0.0, spacing_mm = 0.0, trail_spacing_mm = 0.0;
     double fraction = 1.0, within = 1.0, trail_rad = 0.0, rotation_rad = 0.0;
     // A pleochroic halo ("halo" in a section file): the host within radius_mm of an inclusion's

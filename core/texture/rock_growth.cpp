@@ -473,7 +473,7 @@ nlohmann::json inclusions_json(const RockRecipe& r, const PhaseRecipe& ph, const
                       {"rotation_deg", in.rotation_deg * turned},
                       {"euler_deg", std::move(euler)}};
   if (in.halo) j["halo"] = {{"radius_mm", in.halo->radius_mm}, {"darkening", in.halo->darkening}};
-  if (in.needles) j["habit"] = "needle";
+  if (in.habit != InclusionHabit::Trail) j["habit"] = inclusion_habit_name(in.habit);
   return j;
 }
 

@@ -32,10 +32,16 @@ HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, dou
   return r;
 }
 
-bool read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm, double trail_spacing_mm) {
+const char* inclusion_habit_name(InclusionHabit h) {
+  return h == InclusionHabit::Needle ? "needle" : h == InclusionHabit::Wedge ? "wedge" : "trail";
+}
+
+InclusionHabit read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm,
+                                    double trail_spacing_mm) {
   const std::string habit = a.get_or<std::string>("habit", "trail");
-  if (habit == "trail") return false;
-  if (habit != "needle") a.fail("habit", "expected \"trail\" or \"needle\"");
+  if (habit == "trail") return InclusionHabit::Trail;
+  if (habit == "wedge") return InclusionHabit::Wedge;
+  if (habit != "needle") a.fail("habit", "expected \"trail\", \"needle\" or \"wedge\"");
   const MineralCrystallography* mc = find_mineral_crystallography(mineral);
   if (!mc || !mc->habit.elongation || !mc->orientation)
     a.fail("habit", "a needle grows along its mineral's elongation, and " + mineral +
@@ -43,7 +49,7 @@ bool read_inclusion_habit(const JsonReader& a, const std::string& mineral, doubl
   if (size_mm > trail_spacing_mm)
     a.fail("habit", "a needle " + std::to_string(size_mm) + " mm long lies any way: it needs trail_spacing_mm >= size_mm (" +
                         std::to_string(trail_spacing_mm) + ")");
-  return true;
+  return InclusionHabit::Needle;
 }
 
 namespace {
@@ -65,7 +71,7 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
   in.trail_deg = a.optional<double>("trail_deg", Range::closed(-L::kMaxTrailDeg, L::kMaxTrailDeg));
   in.rotation_deg = a.get_or("rotation_deg", 0.0, Range::closed(-L::kMaxRotationDeg, L::kMaxRotationDeg));
   in.orientations = a.get_or("orientations", 4, Range::closed(1, L::kMaxOrientations));
-  in.needles = read_inclusion_habit(a, in.mineral, in.size_mm, in.trail_spacing_mm);
+  in.habit = read_inclusion_habit(a, in.mineral, in.size_mm, in.trail_spacing_mm);
   if (const auto h = a.optional_object("halo")) in.halo = read_halo(*h, in.size_mm, in.spacing_mm, in.trail_spacing_mm);
   return in;
 }

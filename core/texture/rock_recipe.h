@@ -26,7 +26,7 @@
 //                "inclusions": {"mineral": "quartz", "size_mm": 0.04, "aspect": 2.5, "spacing_mm": 0.1,
 //                               "trail_spacing_mm": 0.08, "fraction": 0.6, "within": 0.85,
 //                               "trail_deg": 15, "rotation_deg": 90, "orientations": 4,
-//                               "habit": "trail|needle", "halo": {"radius_mm", "darkening"}},
+//                               "habit": "trail|needle|wedge", "halo": {"radius_mm", "darkening"}},
 //                                            (optional: a poikiloblast's inclusion trails,
 //                                             needles along their own c, haloes)
 //                "overgrowth": {"cement_percent": 5, "dust": {"mineral": "aqueous_fluid", "size_mm": 0.004,
@@ -120,12 +120,17 @@ struct HaloRecipe {
 };
 HaloRecipe read_halo(const JsonReader& h, double size_mm, double spacing_mm, double trail_spacing_mm);
 
-// An inclusion set's "habit": "trail" (the default: each inclusion lies along its trail) or
-// "needle" (each a prism along its own crystal's elongation, section_map.h InclusionSet::Needle).
+// An inclusion set's "habit": "trail" (the default: each inclusion an ellipse along its trail),
+// "needle" (each a prism along its own crystal's elongation, section_map.h InclusionSet::Needle)
+// or "wedge" (each a triangle along its trail, its base at the trail's back and its apex ahead:
+// the cuneiform quartz of a graphic intergrowth, section_map.h InclusionSet::wedges).
 // A needle's mineral needs its elongation and optical orientation in the library (to lay the
 // prism in the indicatrix's frame), and the needle may be no longer than either spacing: lying
-// any way, it is then found from its cell's eight neighbours. True for needles.
-bool read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm, double trail_spacing_mm);
+// any way, it is then found from its cell's eight neighbours.
+enum class InclusionHabit { Trail, Needle, Wedge };
+InclusionHabit read_inclusion_habit(const JsonReader& a, const std::string& mineral, double size_mm,
+                                    double trail_spacing_mm);
+const char* inclusion_habit_name(InclusionHabit h);  // "trail", "needle", "wedge"
 
 struct InclusionRecipe {
   // The limits both readers enforce (this recipe's and a section file's, section_map.cpp): an
@@ -139,7 +144,7 @@ struct InclusionRecipe {
   double fraction = 1.0, within = 1.0, rotation_deg = 0.0;
   std::optional<double> trail_deg;
   int orientations = 4;
-  bool needles = false;
+  InclusionHabit habit = InclusionHabit::Trail;
   std::optional<HaloRecipe> halo;
 };
 
