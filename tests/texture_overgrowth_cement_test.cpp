@@ -72,6 +72,10 @@ TEST(OvergrowthCement, TheScaleIsTheQuantileOfThePoresReaches) {
   EXPECT_EQ(n, 30);
   EXPECT_DOUBLE_EQ(overgrowth_scale_for(reach, 1000, 0.1), 1.49);  // all 100 finite reaches
   EXPECT_THROW((void)overgrowth_scale_for(reach, 1000, 0.102), std::invalid_argument);
+  // Under half a point of cement: a positive scale the section reader takes, below every reach.
+  const double none = overgrowth_scale_for(reach, 1000, 0.0004);
+  EXPECT_GT(none, 0.0);
+  EXPECT_LT(none, 0.5);
 }
 
 // The grid's owner is the exhaustive search's, ties included, over random grains in random

@@ -15,6 +15,7 @@ namespace pmsim {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNoCementScale = 1e-3;
 
 void add_face(CrystalPolyhedron& p, const glm::dvec3& n) {
   p.normals.push_back(glm::normalize(n));
@@ -58,7 +59,9 @@ double overgrowth_scale_for(std::vector<double> reach, std::size_t total, double
     throw std::invalid_argument("the pores hold " + std::to_string(double(finite) / double(std::max<std::size_t>(total, 1))) +
                                 " of the section within the overgrowths' reach, less than the cement's " +
                                 std::to_string(cement));
-  if (k == 0) return 0.0;
+  // Less cement than one point: a scale no point reaches (a form shrunk inside its grain), yet a
+  // valid one for the section file's reader, which takes (0, 3].
+  if (k == 0) return kNoCementScale;
   std::nth_element(reach.begin(), reach.begin() + std::ptrdiff_t(k - 1), reach.end());
   return reach[k - 1];
 }

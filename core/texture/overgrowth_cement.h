@@ -51,9 +51,10 @@ double overgrowth_reach(const GrainOvergrowth& o, const glm::dvec2& p_mm);
 
 // The habit_scale at which overgrowths of one scale fill `cement` of the points whose reaches are
 // `reach` (a pore raster's least reach over the grains, one value a point) and `total` the points
-// of the whole raster: the quantile of the reaches at cement·total. Infinite reaches (points no
-// form of any scale reaches) are never cement. Throws std::invalid_argument if the pores cannot
-// hold that much cement.
+// of the whole raster: the quantile of the reaches at cement·total (rounded to whole points; under
+// one point, 10⁻³: a form inside its grain, no cement). Infinite reaches (points no form of any
+// scale reaches) are never cement. Throws std::invalid_argument if the pores cannot hold that
+// much cement.
 double overgrowth_scale_for(std::vector<double> reach, std::size_t total, double cement);
 
 class OvergrowthCement {
