@@ -173,8 +173,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
     }
   }
   if (const auto& o = g.overgrowth) {
-    const double rb = g.growth->shape.support_mm[0], z = g.growth->nucleus_mm.z;
-    r.overgrowth = GrainOvergrowthReport{o->habit_scale, std::sqrt(std::max(0.0, rb * rb - z * z)), o->dust ? o->dust->mineral : ""};
+    r.overgrowth = GrainOvergrowthReport{o->habit_scale, g.detrital_section_radius_mm(), o->dust ? o->dust->mineral : ""};
   }
   if (r.opaque) {
     // Black in every light: no extinction, interference colour or slow direction to observe.

@@ -340,6 +340,11 @@ int SectionMap::crack_domain(int grain) const {
   return g.vein ? g.first_domain + g.crystal_domain_count() : kMediumDomain;
 }
 
+double SectionGrain::detrital_section_radius_mm() const {
+  const double r = growth->shape.support_mm[0], z = growth->nucleus_mm.z;
+  return std::sqrt(std::max(0.0, r * r - z * z));
+}
+
 // The inclusion (its orientation's index) of grain gi covering p, or −1. Each inclusion is a rigid
 // ellipse: caught at the growth fraction s_c of its centre on a straight trail, then turned with
 // the crystal by rotation·(1 − s_c) about the grain's centre. Its cell (trail, site) is found in
@@ -457,8 +462,8 @@ int in_spindle(const glm::dvec2& d, const glm::dvec2& normal, double w, int gi, 
 // stays in its site. `s` is p's growth fraction in the ball.
 bool in_dust(const SectionGrain& g, int gi, const glm::dvec2& p, double s) {
   const SectionGrain::Overgrowth::Dust& dust = *g.overgrowth->dust;
-  const double r = g.growth->shape.support_mm[0], z = g.growth->nucleus_mm.z;
-  const double half = 0.5 * dust.size_mm, rho = std::sqrt(std::max(0.0, r * r - z * z)), rc = rho - half;
+  const double r = g.growth->shape.support_mm[0];
+  const double half = 0.5 * dust.size_mm, rc = g.detrital_section_radius_mm() - half;
   if (!(rc > half) || std::abs(s * r - r) > dust.size_mm + 1e-12) return false;  // s·r ≈ |x|: near the surface only
   const glm::dvec2 d = p - glm::dvec2(g.growth->nucleus_mm);
   if (std::abs(glm::length(d) - rc) > half) return false;

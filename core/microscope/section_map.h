@@ -221,6 +221,9 @@ struct SectionGrain {
   // The dust line's one domain, after the halo's.
   int dust_domain() const { return first_halo_domain() + (has_halo() ? crystal_domain_count() : 0); }
   bool has_dust() const { return overgrowth && overgrowth->dust; }
+  // An overgrown grain's detrital outline in the section: the circle where the plane cuts its
+  // ball, √(r² − z²) about the nucleus (0 where the plane misses the ball).
+  double detrital_section_radius_mm() const;
 };
 
 // The optical domains of a raster (an EBSD map read as a section, core/microscope/map_section.h):

@@ -21,6 +21,11 @@ void add_face(CrystalPolyhedron& p, const glm::dvec3& n) {
   p.normals.push_back(glm::normalize(n));
   p.support_mm.push_back(1.0);
 }
+
+// The gauge of o's form at section point p (1 on its faces), about the ball's centre.
+double form_gauge(const GrainOvergrowth& o, const glm::dvec2& p) {
+  return gauge(o.form, {p.x - o.nucleus_mm.x, p.y - o.nucleus_mm.y, -o.nucleus_mm.z});
+}
 }  // namespace
 
 CrystalPolyhedron overgrowth_unit_form(const MineralCrystallography& mc) {
@@ -47,10 +52,7 @@ CrystalPolyhedron overgrowth_form(const CrystalPolyhedron& unit, const glm::dmat
   return placed(unit, L, radius_mm * habit_scale);
 }
 
-double overgrowth_reach(const GrainOvergrowth& o, const glm::dvec2& p) {
-  const glm::dvec3 x{p.x - o.nucleus_mm.x, p.y - o.nucleus_mm.y, -o.nucleus_mm.z};
-  return gauge(o.form, x) * o.habit_scale;
-}
+double overgrowth_reach(const GrainOvergrowth& o, const glm::dvec2& p) { return form_gauge(o, p) * o.habit_scale; }
 
 double overgrowth_scale_for(std::vector<double> reach, std::size_t total, double cement) {
   const auto k = static_cast<std::size_t>(std::llround(cement * static_cast<double>(total)));
@@ -103,7 +105,7 @@ OvergrowthCement::OvergrowthCement(std::vector<GrainOvergrowth> grains, double w
 // surface: r·(H·gauge − 1); infinite outside its form.
 double OvergrowthCement::arrival(std::size_t i, const glm::dvec2& p) const {
   const GrainOvergrowth& g = grains_[i];
-  const double s = gauge(g.form, {p.x - g.nucleus_mm.x, p.y - g.nucleus_mm.y, -g.nucleus_mm.z});
+  const double s = form_gauge(g, p);
   return s <= 1.0 ? g.radius_mm * (g.habit_scale * s - 1.0) : kInf;
 }
 
@@ -149,7 +151,7 @@ double OvergrowthCement::least_reach(const glm::dvec2& p) const {
   for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
     const GrainOvergrowth& g = grains_[static_cast<std::size_t>(cell_grains_[k])];
     // Beyond the registered form (gauge > 1) the grid may not list the grain: not a reach.
-    const double s = gauge(g.form, {p.x - g.nucleus_mm.x, p.y - g.nucleus_mm.y, -g.nucleus_mm.z});
+    const double s = form_gauge(g, p);
     if (s <= 1.0) least = std::min(least, s * g.habit_scale);
   }
   return least;

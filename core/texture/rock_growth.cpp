@@ -255,10 +255,17 @@ nlohmann::json zones_json(const PhaseRecipe& ph) {
   return zones;
 }
 
-// Each crystal's area in the section, on a raster finer than the smallest crystal (min_size_mm).
-void measure_areas(const RockRecipe& r, const GrownTiling& t, double min_size_mm, std::vector<GrownCrystal>& crystals) {
+// The raster areas are measured on: finer than a third of the smallest crystal (min_size_mm), at
+// most 2000 points across the longer side; point counts across and down.
+glm::ivec2 area_raster(const RockRecipe& r, double min_size_mm) {
   const double step = std::max(min_size_mm / 3.0, std::max(r.width_mm, r.height_mm) / 2000.0);
-  const int fx = static_cast<int>(std::ceil(r.width_mm / step)), fy = static_cast<int>(std::ceil(r.height_mm / step));
+  return {static_cast<int>(std::ceil(r.width_mm / step)), static_cast<int>(std::ceil(r.height_mm / step))};
+}
+
+// Each crystal's area in the section, on the area raster.
+void measure_areas(const RockRecipe& r, const GrownTiling& t, double min_size_mm, std::vector<GrownCrystal>& crystals) {
+  const glm::ivec2 raster = area_raster(r, min_size_mm);
+  const int fx = raster.x, fy = raster.y;
   const auto counts = owner_counts(r, t, fx, fy);
   const double pixel_mm2 = r.width_mm * r.height_mm / (double(fx) * fy);
   for (std::size_t i = 0; i < crystals.size(); ++i) crystals[i].area_mm2 = static_cast<double>(counts[i]) * pixel_mm2;
@@ -372,8 +379,8 @@ constexpr double kCalibrationScale = 2.0;  // the forms the reaches are read fro
 void calibrate_cement(const RockRecipe& r, const GrownTiling& t, double min_size_mm, RockGrowth& out) {
   out.overgrowth_scale.assign(r.phases.size(), 0.0);
   out.cement_fraction.assign(r.phases.size(), 0.0);
-  const double step = std::max(min_size_mm / 3.0, std::max(r.width_mm, r.height_mm) / 2000.0);
-  const int fx = static_cast<int>(std::ceil(r.width_mm / step)), fy = static_cast<int>(std::ceil(r.height_mm / step));
+  const glm::ivec2 raster = area_raster(r, min_size_mm);
+  const int fx = raster.x, fy = raster.y;  // not a structured binding: clang 14 cannot capture one
   for (std::size_t k = 0; k < r.phases.size(); ++k) {
     const auto& og = r.phases[k].overgrowth;
     if (!og) continue;
