@@ -44,6 +44,11 @@ json grain_report_json(const GrainReport& r) {
     j["overgrowth"] = {{"habit_scale", o->habit_scale},
                        {"detrital_radius_mm", o->detrital_radius_mm},
                        {"dust", o->dust_mineral.empty() ? json(nullptr) : json(o->dust_mineral)}};
+  if (const auto& m = r.myrmekite)
+    j["myrmekite"] = {{"host", m->host},
+                      {"bulbs", m->bulbs},
+                      {"quartz", m->quartz_mineral},
+                      {"quartz_extinction_stage_deg", m->quartz_extinction_stage_deg}};
   if (r.subgrains)
     j["subgrains"] = {{"width_mm", r.subgrains->width_mm},
                       {"step_deg", r.subgrains->step_deg},

@@ -73,6 +73,16 @@ struct GrainOvergrowthReport {
   std::string dust_mineral;
 };
 
+// A grain with myrmekite (SectionGrain::Myrmekite): the mineral its bulbs grow into, how many
+// bulbs stand in this section, and the quartz rods' mineral and extinction positions (one
+// orientation for all of the grain's rods).
+struct GrainMyrmekiteReport {
+  std::string host;
+  int bulbs = 0;
+  std::string quartz_mineral;
+  std::vector<double> quartz_extinction_stage_deg;
+};
+
 struct GrainReport {
   int id = 0;           // the grain's label (SectionMap::grain_label)
   std::string mineral;  // as the section file names it, composition included ("plagioclase:An35")
@@ -97,6 +107,7 @@ struct GrainReport {
   std::optional<GrainAlterationReport> alteration;
   std::optional<GrainInclusionReport> inclusions;
   std::optional<GrainOvergrowthReport> overgrowth;
+  std::optional<GrainMyrmekiteReport> myrmekite;
   // Opaque (magnetite, ilmenite: core/crystal/opacity.h at the section's thickness): black in plane
   // and crossed light, so nothing above is observable in transmitted light — the extinction
   // positions, slow direction, extinction angle, sign of elongation and twin extinctions are left

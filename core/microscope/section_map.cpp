@@ -84,6 +84,10 @@ DomainPart SectionMap::domain_part(int d) const {
     part.dust = true;
     return part;
   }
+  if (g.myrmekite && d == g.myrmekite_domain()) {
+    part.myrmekite = true;
+    return part;
+  }
   if (g.has_halo() && d >= g.first_halo_domain()) {
     part.halo = true;
     k = d - g.first_halo_domain();
@@ -103,6 +107,7 @@ const Crystal* SectionMap::crystal_of_domain(int d) const {
   const SectionGrain& g = grains[part.grain];
   if (part.inclusion >= 0) return g.inclusions->crystal;
   if (part.dust) return g.overgrowth->dust->crystal;
+  if (part.myrmekite) return g.myrmekite->quartz;
   if (part.halo) return g.inclusions->halo->zone_crystals[static_cast<std::size_t>(part.zone)].get();
   return part.vein ? g.vein->crystal : g.zones[part.zone].crystal;
 }
@@ -118,6 +123,7 @@ const std::string& SectionMap::mineral_of_domain(int d) const {
   const SectionGrain& g = grains[part.grain];
   if (part.inclusion >= 0) return g.inclusions->mineral;
   if (part.dust) return g.overgrowth->dust->mineral;
+  if (part.myrmekite) return g.myrmekite->quartz_mineral;
   return part.vein ? g.vein->mineral : g.zones[part.zone].mineral;
 }
 
@@ -155,6 +161,10 @@ void SectionMap::finish() {
       domain_orientation_.push_back(glm::dmat3(1.0));
       domain_grain_.push_back(static_cast<int>(i));
     }
+    if (g.myrmekite) {
+      domain_orientation_.push_back(g.myrmekite->quartz_orientation);
+      domain_grain_.push_back(static_cast<int>(i));
+    }
   }
   if (raster) {  // domain_at reads the raster: no tiling grid
     if (has_opaque_domain) {
@@ -171,6 +181,8 @@ void SectionMap::finish() {
   }
   cement_.reset();
   cement_grain_.clear();
+  bulbs_.reset();
+  hosts_bulbs_.clear();
   if (!grown_grain_.empty()) {
     grown_ = std::make_shared<const GrownTiling>(
         grown_grain_.size(), [&](std::size_t k) -> const GrainGrowth& { return *grains[grown_grain_[k]].growth; },
@@ -183,6 +195,7 @@ void SectionMap::finish() {
         cement_grain_.push_back(i);
       }
     if (!overgrowths.empty()) cement_ = std::make_shared<const OvergrowthCement>(std::move(overgrowths), width_mm, height_mm);
+    place_myrmekite();
     return;
   }
   // Grid over the extent with about two cells per grain, at most 1024 a side.
@@ -276,7 +289,14 @@ int SectionMap::nearest_grain_exhaustive(const glm::dvec2& p) const {
 // The grain of tiling crystal c at p; where no crystal reaches p (c < 0), an overgrowth's or the
 // matrix's.
 int SectionMap::grown_owner(int c, const glm::dvec2& p, bool exhaustive) const {
-  if (c >= 0) return grown_grain_[c];
+  if (c >= 0) {
+    const int gi = grown_grain_[c];
+    if (bulbs_ && hosts_bulbs_[static_cast<std::size_t>(gi)]) {  // a host's point may be in a bulb of its neighbour
+      const int b = bulbs_->at(p);
+      if (b >= 0) return bulbs_->bulb(b).grain;
+    }
+    return gi;
+  }
   if (cement_) {
     const int k = exhaustive ? cement_->owner_exhaustive(p) : cement_->owner(p);
     if (k >= 0) return cement_grain_[k];
@@ -492,6 +512,10 @@ int SectionMap::domain_in_grain(int gi, const glm::dvec2& p) const {
   // An overgrown grain: its cement (s > 1 in the ball) holds none of what the grain brought along.
   const double s_ball = g.overgrowth ? growth_fraction(*g.growth, p) : 0.0;
   if (g.has_dust() && in_dust(g, gi, p, s_ball)) return g.dust_domain();
+  if (g.myrmekite) {  // in a bulb, a quartz rod or the grain's own plagioclase (below)
+    const int b = myrmekite_bulb_of(gi, p);
+    if (b >= 0 && in_vermicule(bulbs_->bulb(b), g.myrmekite->rods, p)) return g.myrmekite_domain();
+  }
   if (g.inclusions && s_ball <= 1.0) {
     const int k = inclusion_at(g, gi, p);
     if (k >= 0) return g.first_inclusion_domain() + k;
@@ -919,6 +943,32 @@ void read_overgrowth(const JsonReader& gr, SectionGrain& g, GrainLookups& lookup
   g.overgrowth = std::move(og);
 }
 
+// "myrmekite": {"host": "microcline", "depth_mm": d, "bulb_mm": b, "fraction": f,
+//               "quartz": {"mineral": "quartz", "width_mm": w, "spacing_mm": s, "euler_deg": [φ1, Φ, φ2]}}
+// (SectionGrain::Myrmekite) on a grown grain. Bulbs up to 1 mm deep and 2 mm wide: myrmekite
+// is a rim texture, tens to hundreds of micrometres (Phillips 1974).
+void read_myrmekite(const JsonReader& gr, SectionGrain& g) {
+  const auto m = gr.optional_object("myrmekite");
+  if (!m) return;
+  m->warn_unknown_keys({"host", "depth_mm", "bulb_mm", "fraction", "quartz"});
+  if (!g.growth) gr.fail("myrmekite", "myrmekite stands on a grown grain's boundary: the grain needs a \"growth\"");
+  SectionGrain::Myrmekite my;
+  my.host = m->require<std::string>("host");
+  my.depth_mm = m->require<double>("depth_mm", Range::open_closed(0, 1.0));
+  my.bulb_mm = m->require<double>("bulb_mm", Range::open_closed(0, 2.0));
+  my.fraction = m->get_or("fraction", 1.0, Range::closed(0, 1));
+  const JsonReader q = m->object("quartz");
+  q.warn_unknown_keys({"mineral", "width_mm", "spacing_mm", "euler_deg"});
+  my.quartz_mineral = q.require<std::string>("mineral");
+  my.quartz = &known_mineral(q, "mineral", my.quartz_mineral);
+  my.rods.width_mm = q.require<double>("width_mm", Range::open_closed(0, 0.1));
+  my.rods.spacing_mm = q.require<double>("spacing_mm", Range::closed(my.rods.width_mm, 0.5));
+  const auto e = numbers(q, "euler_deg", 3);
+  my.quartz_orientation = indicatrix_in_section(find_mineral_crystallography(my.quartz_mineral),
+                                                crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])}));
+  g.myrmekite = std::move(my);
+}
+
 // "subgrains": {"width_mm": w, "step_deg": s, "axis": [x, y, z], "wall_normal": [x, y, z]}
 // (section frame). The bands cover the grain's longest extent on either side of its centre
 // (the outer two take whatever of a grown grain lies further); a misorientation step above 15°
@@ -1035,8 +1085,8 @@ void darken_halo(const JsonReader& gr, SectionGrain& g) {
 // The matrix grain: no shape of its own; it owns what no grown crystal reaches (its ellipse, for
 // reports, is the section's extent).
 void read_matrix_grain(const JsonReader& gr, SectionGrain& g, const SectionMap& m) {
-  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration", "inclusions", "overgrowth"})
-    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains, veins, inclusions or overgrowth of its own");
+  for (const char* k : {"growth", "zones", "twin", "size_mm", "aspect", "subgrains", "alteration", "inclusions", "overgrowth", "myrmekite"})
+    if (gr.has(k)) gr.fail(k, "a matrix grain has no shape, growth, zones, twins, subgrains, veins, inclusions, overgrowth or myrmekite of its own");
   g.matrix = true;
   g.centre_mm = {0.0, 0.0};
   set_ellipse(g, outer({1, 0, 0}, 0.5 * m.width_mm) + outer({0, 1, 0}, 0.5 * m.height_mm) + outer({0, 0, 1}, 1.0));
@@ -1110,6 +1160,7 @@ SectionGrain read_section_grain(const JsonReader& gr, const SectionMap& m, Grain
   if (!g.matrix) read_vein(gr, g);
   if (!g.matrix) read_inclusions(gr, g);
   if (!g.matrix) read_overgrowth(gr, g, templates);
+  if (!g.matrix) read_myrmekite(gr, g);
   if (g.zones.empty()) g.zones.push_back({g.mineral, g.crystal, g.orientation, g.twin_orientation, 1.0});
   darken_halo(gr, g);
   return g;

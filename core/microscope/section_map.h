@@ -24,6 +24,7 @@
 
 #include "core/crystal/crystal.h"
 #include "core/texture/grown_tiling.h"
+#include "core/texture/myrmekite.h"
 #include "core/texture/overgrowth_cement.h"
 #include "core/texture/rock_growth.h"
 
@@ -207,6 +208,21 @@ struct SectionGrain {
     std::optional<Dust> dust;
   };
   std::optional<Overgrowth> overgrowth;
+  // Myrmekite ("myrmekite" in a section file; core/texture/myrmekite.h): bulbs of this grain (a
+  // grown plagioclase) standing on its boundary with grains of the `host` mineral (a K-feldspar,
+  // matched without its composition) and bulging into them. Sites lie one every bulb_mm of arc
+  // around the grain's centre, each taken with probability `fraction` (a hash of grain and site);
+  // a bulb is up to depth_mm deep and bulb_mm wide. Its points are this grain's (its outermost
+  // zone, its twins and cracks), except its quartz rods, which are one orientation's domain.
+  struct Myrmekite {
+    std::string host;
+    double depth_mm = 0.0, bulb_mm = 0.0, fraction = 1.0;
+    Vermicules rods;
+    std::string quartz_mineral;
+    const Crystal* quartz = nullptr;
+    glm::dmat3 quartz_orientation{1.0};
+  };
+  std::optional<Myrmekite> myrmekite;
   // Domains first_domain … first_domain + crystal_domain_count() − 1, in the order zone, twin
   // individual, subgrain (the last varying fastest); then the vein's, if any; then one per
   // inclusion orientation; then, with a halo, the crystal domains' again, darkened.
@@ -221,6 +237,8 @@ struct SectionGrain {
   // The dust line's one domain, after the halo's.
   int dust_domain() const { return first_halo_domain() + (has_halo() ? crystal_domain_count() : 0); }
   bool has_dust() const { return overgrowth && overgrowth->dust; }
+  // The myrmekite's quartz domain, after the dust line's.
+  int myrmekite_domain() const { return dust_domain() + (has_dust() ? 1 : 0); }
   // An overgrown grain's detrital outline in the section: the circle where the plane cuts its
   // ball, √(r² − z²) about the nucleus (0 where the plane misses the ball).
   double detrital_section_radius_mm() const;
@@ -249,6 +267,7 @@ struct DomainPart {
   int inclusion = -1;  // the orientation of the grain's inclusions (SectionGrain::inclusions); likewise
   bool halo = false;   // the host in an inclusion's pleochroic halo (zone, twin and subgrain as the host's)
   bool dust = false;   // a speck of the grain's dust line (SectionGrain::Overgrowth::Dust)
+  bool myrmekite = false;  // a quartz rod of the grain's myrmekite (SectionGrain::Myrmekite)
 };
 
 class SectionMap {
@@ -299,6 +318,8 @@ class SectionMap {
   void finish();
   // The grain whose cell contains p, by testing every grain (what the grid must reproduce).
   int nearest_grain_exhaustive(const glm::dvec2& p_mm) const;
+  // The myrmekite bulbs of the section (SectionGrain::Myrmekite); null without any.
+  const MyrmekiteBulbs* myrmekite_bulbs() const { return bulbs_.get(); }
 
  private:
   int nearest_grain(const glm::dvec2& p_mm) const;
@@ -310,6 +331,13 @@ class SectionMap {
   std::shared_ptr<const OvergrowthCement> cement_;
   std::vector<int> cement_grain_;
   int grown_owner(int crystal, const glm::dvec2& p_mm, bool exhaustive) const;
+  // Myrmekite (SectionGrain::Myrmekite): every bulb, and per grain whether its mineral is some
+  // myrmekite's host (only those grains' points are looked up among the bulbs).
+  std::shared_ptr<const MyrmekiteBulbs> bulbs_;
+  std::vector<char> hosts_bulbs_;
+  void place_myrmekite();
+  // The bulb of grain gi holding p beyond gi's own tiling cell (in its host), or −1.
+  int myrmekite_bulb_of(int gi, const glm::dvec2& p_mm) const;
   int matrix_grain_ = -1;
   int domain_in_grain(int grain, const glm::dvec2& p_mm) const;
   int crack_family_in_grain(int grain, const glm::dvec2& p_mm, double crack_mm) const;

@@ -79,25 +79,14 @@ OvergrowthCement::OvergrowthCement(std::vector<GrainOvergrowth> grains, double w
     reach_max = std::max(reach_max, g.form.circumradius_mm);
   }
   mean /= static_cast<double>(grains_.size());
-  x0_ = -0.5 * width_mm - reach_max;
-  y0_ = -0.5 * height_mm - reach_max;
-  cell_mm_ = std::max({mean, (width_mm + 2.0 * reach_max) / 2048.0, (height_mm + 2.0 * reach_max) / 2048.0});
-  cells_x_ = std::max(1, static_cast<int>(std::ceil((width_mm + 2.0 * reach_max) / cell_mm_)));
-  cells_y_ = std::max(1, static_cast<int>(std::ceil((height_mm + 2.0 * reach_max) / cell_mm_)));
-  std::vector<std::vector<int>> lists(static_cast<std::size_t>(cells_x_) * cells_y_);
-  const auto cell = [&](double v, double v0, int n) { return std::clamp(static_cast<int>(std::floor((v - v0) / cell_mm_)), 0, n - 1); };
+  const glm::dvec2 half{0.5 * width_mm + reach_max, 0.5 * height_mm + reach_max};
+  cells_ = CellLists(-half, half, mean);
   for (std::size_t i = 0; i < grains_.size(); ++i) {
     const GrainOvergrowth& g = grains_[i];
     const double r = g.form.circumradius_mm;
     if (std::abs(g.nucleus_mm.z) >= r) continue;  // its form misses the plane
-    for (int cy = cell(g.nucleus_mm.y - r, y0_, cells_y_); cy <= cell(g.nucleus_mm.y + r, y0_, cells_y_); ++cy)
-      for (int cx = cell(g.nucleus_mm.x - r, x0_, cells_x_); cx <= cell(g.nucleus_mm.x + r, x0_, cells_x_); ++cx)
-        lists[static_cast<std::size_t>(cy) * cells_x_ + cx].push_back(static_cast<int>(i));
-  }
-  cell_start_.assign(1, 0);
-  for (const auto& l : lists) {
-    cell_grains_.insert(cell_grains_.end(), l.begin(), l.end());
-    cell_start_.push_back(static_cast<int>(cell_grains_.size()));
+    const glm::dvec2 c{g.nucleus_mm.x, g.nucleus_mm.y};
+    cells_.add(static_cast<int>(i), c - r, c + r);
   }
 }
 
@@ -109,23 +98,14 @@ double OvergrowthCement::arrival(std::size_t i, const glm::dvec2& p) const {
   return s <= 1.0 ? g.radius_mm * (g.habit_scale * s - 1.0) : kInf;
 }
 
-int OvergrowthCement::cell(const glm::dvec2& p) const {
-  if (cell_start_.empty()) return -1;
-  const double fx = std::floor((p.x - x0_) / cell_mm_), fy = std::floor((p.y - y0_) / cell_mm_);
-  if (!(fx >= 0.0 && fy >= 0.0 && fx < cells_x_ && fy < cells_y_)) return -1;
-  return static_cast<int>(fy) * cells_x_ + static_cast<int>(fx);
-}
-
 int OvergrowthCement::owner(const glm::dvec2& p) const {
-  const int c = cell(p);
-  if (c < 0) return -1;
   int best = -1;
   double best_t = kInf;
-  for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {  // in index order: ties to the lowest
-    const double t = arrival(static_cast<std::size_t>(cell_grains_[k]), p);
+  for (const int i : cells_.at(p)) {  // in index order: ties to the lowest
+    const double t = arrival(static_cast<std::size_t>(i), p);
     if (t < best_t) {
       best_t = t;
-      best = cell_grains_[k];
+      best = i;
     }
   }
   return best;
@@ -145,11 +125,9 @@ int OvergrowthCement::owner_exhaustive(const glm::dvec2& p) const {
 }
 
 double OvergrowthCement::least_reach(const glm::dvec2& p) const {
-  const int c = cell(p);
-  if (c < 0) return kInf;
   double least = kInf;
-  for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-    const GrainOvergrowth& g = grains_[static_cast<std::size_t>(cell_grains_[k])];
+  for (const int i : cells_.at(p)) {
+    const GrainOvergrowth& g = grains_[static_cast<std::size_t>(i)];
     // Beyond the registered form (gauge > 1) the grid may not list the grain: not a reach.
     const double s = form_gauge(g, p);
     if (s <= 1.0) least = std::min(least, s * g.habit_scale);

@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/crystal/crystal_polyhedron.h"
+#include "core/texture/cell_lists.h"
 
 namespace pmsim {
 
@@ -73,12 +74,9 @@ class OvergrowthCement {
 
  private:
   double arrival(std::size_t i, const glm::dvec2& p) const;
-  int cell(const glm::dvec2& p) const;  // the grid cell of p, −1 outside the grid
   std::vector<GrainOvergrowth> grains_;
   // A grid over the section; per cell the overgrowths whose forms' section discs reach it.
-  double cell_mm_ = 1.0, x0_ = 0.0, y0_ = 0.0;
-  int cells_x_ = 0, cells_y_ = 0;
-  std::vector<int> cell_start_, cell_grains_;
+  CellLists cells_;
 };
 
 }  // namespace pmsim

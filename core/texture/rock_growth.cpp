@@ -529,6 +529,19 @@ nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, const std:
     if (const auto& d = og->dust)
       j["overgrowth"]["dust"] = {{"mineral", d->mineral}, {"size_mm", d->size_mm}, {"spacing_mm", d->spacing_mm}, {"fraction", d->fraction}};
   }
+  if (const auto& m = ph.myrmekite) {
+    // The rods' orientation by the grain's index, not from rng: the other draws stay as they were.
+    const auto e = uniform_euler_deg(splitmix64(seed ^ 0x3E7Full), written);
+    j["myrmekite"] = {{"host", m->host},
+                      {"depth_mm", m->depth_mm},
+                      {"bulb_mm", m->bulb_mm},
+                      {"fraction", m->fraction},
+                      {"quartz",
+                       {{"mineral", m->quartz_mineral},
+                        {"width_mm", m->rod_width_mm},
+                        {"spacing_mm", m->rod_spacing_mm},
+                        {"euler_deg", {e[0], e[1], e[2]}}}}};
+  }
   return j;
 }
 

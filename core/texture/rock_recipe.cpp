@@ -76,8 +76,25 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
   return in;
 }
 
+MyrmekiteRecipe read_myrmekite(const JsonReader& m) {
+  m.warn_unknown_keys({"host", "depth_mm", "bulb_mm", "fraction", "quartz", "source"});
+  MyrmekiteRecipe r;
+  r.host = m.require<std::string>("host");
+  known_mineral(m, "host", r.host);
+  r.depth_mm = m.require<double>("depth_mm", Range::open_closed(0, 1.0));
+  r.bulb_mm = m.require<double>("bulb_mm", Range::open_closed(0, 2.0));
+  r.fraction = m.get_or("fraction", 1.0, Range::closed(0, 1));
+  const JsonReader q = m.object("quartz");
+  q.warn_unknown_keys({"mineral", "width_mm", "spacing_mm"});
+  r.quartz_mineral = q.get_or<std::string>("mineral", "quartz");
+  known_mineral(q, "mineral", r.quartz_mineral);
+  r.rod_width_mm = q.require<double>("width_mm", Range::open_closed(0, 0.1));
+  r.rod_spacing_mm = q.require<double>("spacing_mm", Range::closed(r.rod_width_mm, 0.5));
+  return r;
+}
+
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
-  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "overgrowth", "source"});
+  pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "overgrowth", "myrmekite", "source"});
   PhaseRecipe p;
   p.mineral = pr.require<std::string>("mineral");
   known_mineral(pr, "mineral", p.mineral);
@@ -185,6 +202,7 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
     }
     p.overgrowth = og;
   }
+  if (const auto m = pr.optional_object("myrmekite")) p.myrmekite = read_myrmekite(*m);
   return p;
 }
 
@@ -230,6 +248,17 @@ RockRecipe read_rock_recipe(const std::string& path) {
       total += o->cement_percent;
     }
   }
+  // A myrmekite's bulbs grow into another phase of the rock (its mineral without composition).
+  const auto base = [](const std::string& m) { return m.substr(0, m.find(':')); };
+  for (std::size_t k = 0; k < rr.phases.size(); ++k)
+    if (const auto& m = rr.phases[k].myrmekite) {
+      const bool hosted = std::any_of(rr.phases.begin(), rr.phases.end(), [&](const PhaseRecipe& q) {
+        return &q != &rr.phases[k] && base(q.mineral) == base(m->host);
+      });
+      if (!hosted)
+        throw InputError(rr.path, "phases[" + std::to_string(k) + "].myrmekite.host", m->host,
+                         "no other phase of this rock is of that mineral: the bulbs would have nothing to grow into");
+    }
   if (total > 100.0 + 1e-9) r.fail("phases", "the modes (and cements) sum to " + std::to_string(total) + " %, over 100");
   if (rr.matrix_mineral.empty() && std::abs(total - 100.0) > 1e-6)
     r.fail("phases", "without a matrix the modes must sum to 100 % (they sum to " + std::to_string(total) + ")");

@@ -33,6 +33,10 @@
 //                               "spacing_mm": 0.008, "fraction": 0.6}},
 //                                            (optional, on a rounded phase in a rock with pores:
 //                                             syntaxial cement with a dust line)
+//                "myrmekite": {"host": "microcline", "depth_mm": 0.12, "bulb_mm": 0.25, "fraction": 0.5,
+//                              "quartz": {"mineral": "quartz", "width_mm": 0.006, "spacing_mm": 0.018}},
+//                                            (optional: bulbs of vermicular quartz into another
+//                                             phase's grains; core/texture/myrmekite.h)
 //                "source": "..."}, ...],
 //  "granoblastic": {"grain_mm": 0.3, "relax_iterations": 12}}   (optional; phases then need no csd)
 #include <array>
@@ -161,6 +165,15 @@ struct OvergrowthRecipe {
   std::optional<DustLineRecipe> dust;
 };
 
+// Myrmekite on a phase's grains (myrmekite.h): bulbs into the grains of the host mineral, each
+// grain's quartz rods in one orientation of their own.
+struct MyrmekiteRecipe {
+  std::string host;
+  double depth_mm = 0.1, bulb_mm = 0.2, fraction = 1.0;
+  std::string quartz_mineral = "quartz";
+  double rod_width_mm = 0.005, rod_spacing_mm = 0.015;
+};
+
 struct PhaseRecipe {
   std::string name, mineral;
   double mode_percent = 0.0;
@@ -180,6 +193,7 @@ struct PhaseRecipe {
   std::optional<AlterationRecipe> alteration;
   std::optional<InclusionRecipe> inclusions;
   std::optional<OvergrowthRecipe> overgrowth;
+  std::optional<MyrmekiteRecipe> myrmekite;
 };
 
 // A granoblastic rock (quartzite, marble): grains that recrystallised together into a foam of
