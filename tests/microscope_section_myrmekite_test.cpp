@@ -9,12 +9,11 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/crystal/mineral_series.h"
 #include "core/microscope/section_map.h"
 
 namespace pmsim {
 namespace {
-
-std::string without_composition(const std::string& m) { return m.substr(0, m.find(':')); }
 
 // The section against itself without myrmekite (the same grains, the key dropped), point by
 // point on a 4 µm grid over every bulb's bounding square and on a 20 µm grid over the central
@@ -45,7 +44,7 @@ TEST(SectionMyrmekite, GranodioriteBulbsReplaceMicroclineWithPlagioclaseAndQuart
       return;
     }
     ++changed;
-    ASSERT_EQ(without_composition(bare.mineral_of_domain(d0)), "microcline") << p.x << ", " << p.y;
+    ASSERT_EQ(series_name(bare.mineral_of_domain(d0)), "microcline") << p.x << ", " << p.y;
     ASSERT_TRUE(m->grains[std::size_t(g)].myrmekite) << p.x << ", " << p.y;
     const int b = bulbs->at(p);
     ASSERT_GE(b, 0);
@@ -56,7 +55,7 @@ TEST(SectionMyrmekite, GranodioriteBulbsReplaceMicroclineWithPlagioclaseAndQuart
       const auto [it, fresh] = rod_domain.emplace(g, d);
       ASSERT_EQ(it->second, d) << "two rod domains in grain " << g;
     } else {
-      ASSERT_EQ(without_composition(m->mineral_of_domain(d)), "plagioclase") << p.x << ", " << p.y;
+      ASSERT_EQ(series_name(m->mineral_of_domain(d)), "plagioclase") << p.x << ", " << p.y;
     }
   };
   for (std::size_t k = 0; k < bulbs->size(); ++k) {
@@ -66,7 +65,7 @@ TEST(SectionMyrmekite, GranodioriteBulbsReplaceMicroclineWithPlagioclaseAndQuart
     bool behind = false, ahead = false;
     for (int i = 1; i <= 20; ++i) {
       behind |= bare.nearest_grain_exhaustive(b.root_mm - 1e-4 * i * b.out) == b.grain;
-      ahead |= without_composition(bare.grains[std::size_t(bare.nearest_grain_exhaustive(b.root_mm + 1e-4 * i * b.out))].mineral) ==
+      ahead |= series_name(bare.grains[std::size_t(bare.nearest_grain_exhaustive(b.root_mm + 1e-4 * i * b.out))].mineral) ==
                "microcline";
     }
     EXPECT_TRUE(behind && ahead) << "bulb " << k << " at " << b.root_mm.x << ", " << b.root_mm.y;

@@ -1,23 +1,23 @@
 // SectionMap's myrmekite (SectionGrain::Myrmekite; the geometry in core/texture/myrmekite.h):
 // where each grain's bulbs stand, and which bulb a point of a host grain lies in.
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <tbb/parallel_for.h>
 
 #include "core/base/splitmix64.h"
+#include "core/base/units.h"
+#include "core/crystal/mineral_series.h"
 #include "core/microscope/section_map.h"
 
 namespace pmsim {
 
 namespace {
-constexpr double kTwoPi = 6.283185307179586;
 // The boundary search along a site's ray: a step well under a bulb (so a neighbour thinner than
 // that between the centre and the rim is stepped over) and the root to half a micrometre.
 constexpr double kRayStepMm = 0.02, kRootToleranceMm = 5e-4;
-
-std::string without_composition(const std::string& mineral) { return mineral.substr(0, mineral.find(':')); }
 }  // namespace
 
 // Sites one every bulb_mm of arc on the circle of the grain's mean semi-axis, each taken with probability
@@ -27,17 +27,15 @@ std::string without_composition(const std::string& mineral) { return mineral.sub
 // of bulb_mm.
 void SectionMap::place_myrmekite() {
   std::vector<int> mine;
-  std::vector<std::string> hosts;
+  std::set<std::string> hosts;
   for (const int i : grown_grain_)
     if (const auto& m = grains[static_cast<std::size_t>(i)].myrmekite) {
       mine.push_back(i);
-      hosts.push_back(without_composition(m->host));
+      hosts.insert(series_name(m->host));
     }
   if (mine.empty()) return;
   hosts_bulbs_.assign(grains.size(), 0);
-  for (std::size_t i = 0; i < grains.size(); ++i)
-    for (const std::string& h : hosts)
-      if (without_composition(grains[i].mineral) == h) hosts_bulbs_[i] = 1;
+  for (std::size_t i = 0; i < grains.size(); ++i) hosts_bulbs_[i] = hosts.count(series_name(grains[i].mineral)) > 0;
   std::vector<std::vector<MyrmekiteBulb>> found(mine.size());
   tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t k) {
     const int gi = mine[k];
@@ -46,20 +44,20 @@ void SectionMap::place_myrmekite() {
     const glm::dvec2 from{g.growth->nucleus_mm.x, g.growth->nucleus_mm.y};
     const double reach = g.growth->shape.circumradius_mm;
     const double radius = std::min(reach, 0.5 * (g.semi_major_mm + g.semi_minor_mm));  // the grain's ellipse
-    const int sites = std::max(4, static_cast<int>(std::lround(kTwoPi * radius / m.bulb_mm)));
+    const int sites = std::max(4, static_cast<int>(std::lround(2.0 * kPi * radius / m.bulb_mm)));
+    const std::string host = series_name(m.host);
     const auto inside = [&](const glm::dvec2& q) { return nearest_grain(q) == gi; };
     for (int j = 0; j < sites; ++j) {
       const std::uint64_t h = splitmix64((static_cast<std::uint64_t>(gi) << 20) ^ static_cast<std::uint64_t>(j) ^ 0x3E7Full);
       if (unit_interval(h) >= m.fraction) continue;
-      const double a = kTwoPi * (j + 0.2 + 0.6 * unit_interval(splitmix64(h + 1))) / sites;
+      const double a = 2.0 * kPi * (j + 0.2 + 0.6 * unit_interval(splitmix64(h + 1))) / sites;
       const glm::dvec2 dir{std::cos(a), std::sin(a)};
       const auto t = ray_exit_mm(inside, from, dir, reach, std::min(kRayStepMm, 0.25 * m.bulb_mm), kRootToleranceMm);
       if (!t) continue;
       const glm::dvec2 root = from + *t * dir;  // the tiling runs past the section's edges
       if (std::abs(root.x) > 0.5 * width_mm || std::abs(root.y) > 0.5 * height_mm) continue;
       const int beyond = nearest_grain(from + (*t + 2.0 * kRootToleranceMm) * dir);
-      if (beyond < 0 || without_composition(grains[static_cast<std::size_t>(beyond)].mineral) != without_composition(m.host))
-        continue;
+      if (beyond < 0 || series_name(grains[static_cast<std::size_t>(beyond)].mineral) != host) continue;
       MyrmekiteBulb b;
       b.root_mm = root;
       b.out = dir;

@@ -6,11 +6,12 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/splitmix64.h"
+#include "core/base/units.h"
 
 namespace pmsim {
 
 namespace {
-constexpr double kTwoPi = 6.283185307179586;
+constexpr double kTwoPi = 2.0 * kPi;
 // A rod wriggles sideways by this fraction of the rods' spacing, with a wavelength of this many
 // spacings along the bulb's depth (the recipe's: rods that meander without merging, as the
 // atlases draw them).

@@ -9,6 +9,7 @@
 #include "core/base/json_reader.h"
 #include "core/crystal/crystal.h"
 #include "core/crystal/mineral_crystallography.h"
+#include "core/crystal/mineral_series.h"
 
 namespace pmsim {
 
@@ -249,11 +250,10 @@ RockRecipe read_rock_recipe(const std::string& path) {
     }
   }
   // A myrmekite's bulbs grow into another phase of the rock (its mineral without composition).
-  const auto base = [](const std::string& m) { return m.substr(0, m.find(':')); };
   for (std::size_t k = 0; k < rr.phases.size(); ++k)
     if (const auto& m = rr.phases[k].myrmekite) {
       const bool hosted = std::any_of(rr.phases.begin(), rr.phases.end(), [&](const PhaseRecipe& q) {
-        return &q != &rr.phases[k] && base(q.mineral) == base(m->host);
+        return &q != &rr.phases[k] && series_name(q.mineral) == series_name(m->host);
       });
       if (!hosted)
         throw InputError(rr.path, "phases[" + std::to_string(k) + "].myrmekite.host", m->host,
