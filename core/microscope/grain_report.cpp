@@ -178,7 +178,7 @@ GrainReport report_grain(const Scene& scene, const SectionMap& section, int labe
   if (const auto& m = g.myrmekite) {
     GrainMyrmekiteReport my{m->host, 0, m->quartz_mineral, {}};
     if (const MyrmekiteBulbs* b = section.myrmekite_bulbs())
-      for (std::size_t k = 0; k < b->size(); ++k) my.bulbs += b->bulb(static_cast<int>(k)).grain == label - 1;
+      my.bulbs = b->count_of(label - 1);
     const glm::dvec3 n = m->quartz->principal_indices(kGrainReportIndexWavelengthNm);
     my.quartz_extinction_stage_deg =
         extinction_stages(section_optics(m->quartz_orientation, n, kSectionNormal), scene.polarizer_deg);

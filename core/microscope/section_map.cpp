@@ -950,19 +950,20 @@ void read_overgrowth(const JsonReader& gr, SectionGrain& g, GrainLookups& lookup
 void read_myrmekite(const JsonReader& gr, SectionGrain& g) {
   const auto m = gr.optional_object("myrmekite");
   if (!m) return;
+  using L = MyrmekiteRecipe;  // the bounds a recipe's myrmekite meets too (rock_recipe.h)
   m->warn_unknown_keys({"host", "depth_mm", "bulb_mm", "fraction", "quartz"});
   if (!g.growth) gr.fail("myrmekite", "myrmekite stands on a grown grain's boundary: the grain needs a \"growth\"");
   SectionGrain::Myrmekite my;
   my.host = m->require<std::string>("host");
-  my.depth_mm = m->require<double>("depth_mm", Range::open_closed(0, 1.0));
-  my.bulb_mm = m->require<double>("bulb_mm", Range::open_closed(0, 2.0));
+  my.depth_mm = m->require<double>("depth_mm", Range::open_closed(0, L::kMaxDepthMm));
+  my.bulb_mm = m->require<double>("bulb_mm", Range::open_closed(0, L::kMaxBulbMm));
   my.fraction = m->get_or("fraction", 1.0, Range::closed(0, 1));
   const JsonReader q = m->object("quartz");
   q.warn_unknown_keys({"mineral", "width_mm", "spacing_mm", "euler_deg"});
   my.quartz_mineral = q.require<std::string>("mineral");
   my.quartz = &known_mineral(q, "mineral", my.quartz_mineral);
-  my.rods.width_mm = q.require<double>("width_mm", Range::open_closed(0, 0.1));
-  my.rods.spacing_mm = q.require<double>("spacing_mm", Range::closed(my.rods.width_mm, 0.5));
+  my.rods.width_mm = q.require<double>("width_mm", Range::open_closed(0, L::kMaxRodWidthMm));
+  my.rods.spacing_mm = q.require<double>("spacing_mm", Range::closed(my.rods.width_mm, L::kMaxRodSpacingMm));
   const auto e = numbers(q, "euler_deg", 3);
   my.quartz_orientation = indicatrix_in_section(find_mineral_crystallography(my.quartz_mineral),
                                                 crystal_to_sample_from_bunge({radians(e[0]), radians(e[1]), radians(e[2])}));

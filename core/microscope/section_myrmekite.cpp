@@ -18,6 +18,8 @@ namespace {
 // The boundary search along a site's ray: a step well under a bulb (so a neighbour thinner than
 // that between the centre and the rim is stepped over) and the root to half a micrometre.
 constexpr double kRayStepMm = 0.02, kRootToleranceMm = 5e-4;
+// The bulb sites' hash stream (which sites carry a bulb, where along their arc).
+constexpr std::uint64_t kBulbSiteSalt = 0x3E7Full;
 }  // namespace
 
 // Sites one every bulb_mm of arc on the circle of the grain's mean semi-axis, each taken with probability
@@ -48,7 +50,7 @@ void SectionMap::place_myrmekite() {
     const std::string host = series_name(m.host);
     const auto inside = [&](const glm::dvec2& q) { return nearest_grain(q) == gi; };
     for (int j = 0; j < sites; ++j) {
-      const std::uint64_t h = splitmix64((static_cast<std::uint64_t>(gi) << 20) ^ static_cast<std::uint64_t>(j) ^ 0x3E7Full);
+      const std::uint64_t h = splitmix64((static_cast<std::uint64_t>(gi) << 20) ^ static_cast<std::uint64_t>(j) ^ kBulbSiteSalt);
       if (unit_interval(h) >= m.fraction) continue;
       const double a = 2.0 * kPi * (j + 0.2 + 0.6 * unit_interval(splitmix64(h + 1))) / sites;
       const glm::dvec2 dir{std::cos(a), std::sin(a)};

@@ -67,7 +67,15 @@ MyrmekiteBulbs::MyrmekiteBulbs(std::vector<MyrmekiteBulb> bulbs, double width_mm
   for (std::size_t k = 0; k < bulbs_.size(); ++k) {
     const double r = std::max(bulbs_[k].depth_mm, bulbs_[k].half_width_mm);
     cells_.add(static_cast<int>(k), bulbs_[k].root_mm - r, bulbs_[k].root_mm + r);
+    const auto g = static_cast<std::size_t>(std::max(bulbs_[k].grain, 0));
+    if (per_grain_.size() <= g) per_grain_.resize(g + 1, 0);
+    per_grain_[g] += bulbs_[k].grain >= 0;
   }
+}
+
+int MyrmekiteBulbs::count_of(int grain) const {
+  const auto g = static_cast<std::size_t>(grain);
+  return grain >= 0 && g < per_grain_.size() ? per_grain_[g] : 0;
 }
 
 int MyrmekiteBulbs::at(const glm::dvec2& p) const {

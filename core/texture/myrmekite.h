@@ -54,9 +54,12 @@ class MyrmekiteBulbs {
   int at(const glm::dvec2& p_mm) const;
   const MyrmekiteBulb& bulb(int k) const { return bulbs_[static_cast<std::size_t>(k)]; }
   std::size_t size() const { return bulbs_.size(); }
+  // How many bulbs belong to section grain `grain` (a grain report asks this of every grain).
+  int count_of(int grain) const;
 
  private:
   std::vector<MyrmekiteBulb> bulbs_;
+  std::vector<int> per_grain_;  // bulbs per grain index
   CellLists cells_;
 };
 

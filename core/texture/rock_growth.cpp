@@ -496,6 +496,8 @@ nlohmann::json rock_section_header_json(const RockRecipe& r, std::uint64_t seed)
 namespace {
 
 constexpr std::uint64_t kGrainRandomSeed = 0x5B9A1Full;
+// The myrmekite rods' orientation stream (its own, so that no other draw moves).
+constexpr std::uint64_t kMyrmekiteRodsSalt = 0x3E7Full;
 
 // The grain of crystal c, the written-th of the file; draws from rng only for the phase's
 // subgrains, alteration and inclusions.
@@ -531,7 +533,7 @@ nlohmann::json grain_json(const RockRecipe& r, const GrownCrystal& c, const std:
   }
   if (const auto& m = ph.myrmekite) {
     // The rods' orientation by the grain's index, not from rng: the other draws stay as they were.
-    const auto e = uniform_euler_deg(splitmix64(seed ^ 0x3E7Full), written);
+    const auto e = uniform_euler_deg(splitmix64(seed ^ kMyrmekiteRodsSalt), written);
     j["myrmekite"] = {{"host", m->host},
                       {"depth_mm", m->depth_mm},
                       {"bulb_mm", m->bulb_mm},

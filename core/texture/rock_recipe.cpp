@@ -78,19 +78,20 @@ InclusionRecipe read_inclusions(const JsonReader& a) {
 }
 
 MyrmekiteRecipe read_myrmekite(const JsonReader& m) {
+  using L = MyrmekiteRecipe;
   m.warn_unknown_keys({"host", "depth_mm", "bulb_mm", "fraction", "quartz", "source"});
   MyrmekiteRecipe r;
   r.host = m.require<std::string>("host");
   known_mineral(m, "host", r.host);
-  r.depth_mm = m.require<double>("depth_mm", Range::open_closed(0, 1.0));
-  r.bulb_mm = m.require<double>("bulb_mm", Range::open_closed(0, 2.0));
+  r.depth_mm = m.require<double>("depth_mm", Range::open_closed(0, L::kMaxDepthMm));
+  r.bulb_mm = m.require<double>("bulb_mm", Range::open_closed(0, L::kMaxBulbMm));
   r.fraction = m.get_or("fraction", 1.0, Range::closed(0, 1));
   const JsonReader q = m.object("quartz");
   q.warn_unknown_keys({"mineral", "width_mm", "spacing_mm"});
   r.quartz_mineral = q.get_or<std::string>("mineral", "quartz");
   known_mineral(q, "mineral", r.quartz_mineral);
-  r.rod_width_mm = q.require<double>("width_mm", Range::open_closed(0, 0.1));
-  r.rod_spacing_mm = q.require<double>("spacing_mm", Range::closed(r.rod_width_mm, 0.5));
+  r.rod_width_mm = q.require<double>("width_mm", Range::open_closed(0, L::kMaxRodWidthMm));
+  r.rod_spacing_mm = q.require<double>("spacing_mm", Range::closed(r.rod_width_mm, L::kMaxRodSpacingMm));
   return r;
 }
 

@@ -168,6 +168,8 @@ struct OvergrowthRecipe {
 // Myrmekite on a phase's grains (myrmekite.h): bulbs into the grains of the host mineral, each
 // grain's quartz rods in one orientation of their own.
 struct MyrmekiteRecipe {
+  // Bounds a recipe and a section file both hold a myrmekite to (rock_recipe.cpp, section_map.cpp).
+  static constexpr double kMaxDepthMm = 1.0, kMaxBulbMm = 2.0, kMaxRodWidthMm = 0.1, kMaxRodSpacingMm = 0.5;
   std::string host;
   double depth_mm = 0.1, bulb_mm = 0.2, fraction = 1.0;
   std::string quartz_mineral = "quartz";
