@@ -21,7 +21,7 @@ for section in granite_hand_placed; do
 done
 # Rocks grown from a recipe (assets/rocks): 4x and 40x, between crossed polars and in plane light;
 # the 40x view at a point of each rock chosen by eye (where several grains meet).
-declare -A rock40=([granite]="2.3 -0.55" [andesite]="0.8 0.3" [amphibolite]="0.5 0.2" [quartzite]="0.2 0.1" [marble]="0.4 -0.3" [sandstone]="0.3 0.2" [peridotite]="0.3 0.2" [gabbro]="-1.6 0.3" [basalt]="1.0 0.6" [schist]="-2.95 -2.3" [pegmatite]="2.75 -0.35" [granodiorite]="-4.0 4.78")
+declare -A rock40=([granite]="2.3 -0.55" [andesite]="0.8 0.3" [amphibolite]="0.5 0.2" [quartzite]="0.2 0.1" [marble]="0.4 -0.3" [sandstone]="-0.1 -0.1" [peridotite]="0.3 0.2" [gabbro]="-1.6 0.3" [basalt]="1.0 0.6" [schist]="-2.95 -2.3" [pegmatite]="2.75 -0.35" [granodiorite]="-4.0 4.78")
 for rock in granite andesite amphibolite quartzite marble sandstone peridotite gabbro basalt schist pegmatite granodiorite; do
   common=(--set sample.section="$rock" --set render.width=480 --set render.height=360 --scale-bar)
   read -r x y <<<"${rock40[$rock]}"

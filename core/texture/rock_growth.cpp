@@ -59,12 +59,12 @@ double unit_volume(const CrystalPolyhedron& p) {
   return inside * h * h * h;
 }
 
-// Moments of the truncated exponential n(L) ∝ exp(slope·L) on [min, max] (midpoint rule).
+// Moments of the truncated n(L) on [min, max] (midpoint rule).
 void csd_moments(const CsdRecipe& c, double& mean, double& mean3) {
   double w = 0.0, m1 = 0.0, m3 = 0.0;
   const int n = 400;
   for (int i = 0; i < n; ++i) {
-    const double L = c.min_mm + (i + 0.5) * (c.max_mm - c.min_mm) / n, f = std::exp(c.slope_per_mm * (L - c.min_mm));
+    const double L = c.min_mm + (i + 0.5) * (c.max_mm - c.min_mm) / n, f = c.density(L);
     w += f;
     m1 += f * L;
     m3 += f * L * L * L;
@@ -73,24 +73,34 @@ void csd_moments(const CsdRecipe& c, double& mean, double& mean3) {
   mean3 = m3 / w;
 }
 
-// A size from n(L) by inversion, then kept with probability L / max: the length-biased sizes of
-// the crystals a plane cuts.
+// A standard normal deviate (Box–Muller, the cosine branch).
+double gaussian(Random& rng) {
+  const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+}
+
+// A size from n(L) (log-linear: by inversion; log-normal: a normal φ, redrawn outside the range),
+// then kept with probability L / max: the length-biased sizes of the crystals a plane cuts.
 double cut_crystal_size(const CsdRecipe& c, Random& rng) {
   const double C = -1.0 / c.slope_per_mm, span = c.max_mm - c.min_mm;
+  const double phi50 = -std::log2(c.median_mm);
   for (;;) {
-    const double u = rng.uniform();
-    const double L = c.min_mm - C * std::log(1.0 - u * (1.0 - std::exp(-span / C)));
+    double L;
+    if (c.law == CsdRecipe::Law::log_normal) {
+      L = std::exp2(-(phi50 + c.sorting_phi * gaussian(rng)));
+      if (L < c.min_mm || L > c.max_mm) continue;
+    } else {
+      const double u = rng.uniform();
+      L = c.min_mm - C * std::log(1.0 - u * (1.0 - std::exp(-span / C)));
+    }
     if (rng.uniform() * c.max_mm <= L) return std::min(L, c.max_mm);
   }
 }
 
-// Three independent standard normal deviates (Box–Muller, the cosine branch of each pair).
+// Three independent standard normal deviates.
 glm::dvec3 gaussian3(Random& rng) {
   glm::dvec3 g;
-  for (int k = 0; k < 3; ++k) {
-    const double u1 = std::max(rng.uniform(), 1e-300), u2 = rng.uniform();
-    g[k] = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-  }
+  for (int k = 0; k < 3; ++k) g[k] = gaussian(rng);
   return g;
 }
 

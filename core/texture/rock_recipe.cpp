@@ -1,5 +1,6 @@
 #include "core/texture/rock_recipe.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -95,6 +96,28 @@ MyrmekiteRecipe read_myrmekite(const JsonReader& m) {
   return r;
 }
 
+const NameTable<CsdRecipe::Law> kCsdLaws = {{"log-linear", CsdRecipe::Law::log_linear},
+                                            {"log-normal", CsdRecipe::Law::log_normal}};
+
+CsdRecipe read_csd(const JsonReader& c) {
+  c.warn_unknown_keys({"law", "slope_per_mm", "median_mm", "sorting_phi", "min_mm", "max_mm", "source"});
+  CsdRecipe csd;
+  csd.law = c.optional_enum("law", kCsdLaws).value_or(CsdRecipe::Law::log_linear);
+  csd.min_mm = c.require<double>("min_mm", Range::above(0));
+  csd.max_mm = c.require<double>("max_mm", Range::above(0));
+  if (!(csd.max_mm > csd.min_mm)) c.fail("max_mm", "the size range is empty (max_mm must exceed min_mm)");
+  if (csd.law == CsdRecipe::Law::log_linear) {
+    csd.slope_per_mm = c.require<double>("slope_per_mm", Range::open(-1e6, 0));
+    return csd;
+  }
+  if (c.has("slope_per_mm")) c.fail("slope_per_mm", "a log-normal size law has a median and a sorting, not a slope");
+  csd.median_mm = c.require<double>("median_mm", Range::closed(csd.min_mm, csd.max_mm));
+  // Beyond 4 φ a "sorting" spans more than the sand grades (Folk & Ward 1957: over 4 is
+  // extremely poorly sorted); under 0.05 it is one size.
+  csd.sorting_phi = c.require<double>("sorting_phi", Range::closed(0.05, 4.0));
+  return csd;
+}
+
 PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
   pr.warn_unknown_keys({"name", "mineral", "mode_percent", "csd", "nucleation", "aspect", "zoning", "twin", "fabric", "undulose", "shape", "porphyroblast", "alteration", "inclusions", "overgrowth", "myrmekite", "source"});
   PhaseRecipe p;
@@ -105,11 +128,7 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
   if (granoblastic) {
     if (pr.has("csd")) pr.fail("csd", "a granoblastic rock's grains take their size from \"granoblastic\".grain_mm");
   } else {
-    const JsonReader c = pr.object("csd");
-    p.csd.slope_per_mm = c.require<double>("slope_per_mm", Range::open(-1e6, 0));
-    p.csd.min_mm = c.require<double>("min_mm", Range::above(0));
-    p.csd.max_mm = c.require<double>("max_mm", Range::above(0));
-    if (!(p.csd.max_mm > p.csd.min_mm)) c.fail("max_mm", "the size range is empty (max_mm must exceed min_mm)");
+    p.csd = read_csd(pr.object("csd"));
   }
   p.nucleation = pr.get_or("nucleation", 0.0, Range::closed(0, 0.99));
   p.aspect = pr.optional<double>("aspect", Range::at_least(1));
@@ -209,6 +228,13 @@ PhaseRecipe read_phase(const JsonReader& pr, bool granoblastic) {
 }
 
 }  // namespace
+
+// Krumbein's φ density is Gaussian; per millimetre it carries dφ/dL = −1/(L·ln 2).
+double CsdRecipe::density(double size_mm) const {
+  if (law == Law::log_linear) return std::exp(slope_per_mm * (size_mm - min_mm));
+  const double z = (-std::log2(size_mm) + std::log2(median_mm)) / sorting_phi;
+  return std::exp(-0.5 * z * z) / size_mm;
+}
 
 RockRecipe read_rock_recipe(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "rock recipe");

@@ -9,6 +9,8 @@
 //    "phases": [{"name": "plagioclase phenocrysts", "mineral": "plagioclase:An55",
 //                "mode_percent": 20,
 //                "csd": {"slope_per_mm": -3.0, "min_mm": 0.3, "max_mm": 2.5, "source": "..."},
+//                   or {"law": "log-normal", "median_mm": 0.35, "sorting_phi": 0.45, "min_mm", "max_mm"}
+//                                            (a sorted sand; "law" is "log-linear" by default)
 //                "nucleation": 0.0,          (when the phase begins, 0 … 1 of the cooling time)
 //                "aspect": 3,                (optional; the mineral's default otherwise)
 //                "shape": "habit|rounded",   (optional: "rounded" detrital grains are balls)
@@ -50,11 +52,21 @@
 namespace pmsim {
 
 struct CsdRecipe {
-  // Population density n(L) = n0·exp(slope·L) between min_mm and max_mm: the log-linear CSD of
+  enum class Law { log_linear, log_normal };
+  // log_linear: population density n(L) = n0·exp(slope·L) between min_mm and max_mm, the CSD of
   // steady-state crystallisation (Marsh 1988, Contrib. Mineral. Petrol. 99, 277–291; Higgins
   // 2006, Quantitative Textural Measurements in Igneous and Metamorphic Petrology, ch. 5).
-  double slope_per_mm = -5.0;
+  // log_normal: a sorted sediment's grain diameters, normal in φ = −log₂(L / 1 mm) (Krumbein 1934,
+  // J. Sediment. Petrol. 4, 65–77) with median φ₅₀ = −log₂(median_mm) and standard deviation
+  // sorting_phi, Folk & Ward's (1957, J. Sediment. Petrol. 27, 3–26) sorting: under 0.35 very well
+  // sorted, 0.35–0.50 well, 0.50–0.71 moderately well, 0.71–1.00 moderately sorted. The numbers
+  // are of grains (what a thin section counts), not of sieve weights.
+  Law law = Law::log_linear;
+  double slope_per_mm = -5.0;                 // log_linear
+  double median_mm = 0.25, sorting_phi = 0.5;  // log_normal
   double min_mm = 0.05, max_mm = 1.0;
+  // n(L) up to a constant factor, per millimetre of size.
+  double density(double size_mm) const;
 };
 
 struct ZoningRecipe {
